@@ -1,0 +1,38 @@
+#pragma once
+// Options that several edacrt subcommands share, and their effects.
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace edacrt::cli {
+
+struct CommonOptions {
+    std::string scene;
+    std::string method = "naive";
+    int threads = 0;  // 0: all hardware threads
+    std::string stats_path;
+};
+
+void add_common_options(CLI::App& command, CommonOptions& options);
+
+/// Limits oneTBB to --threads for as long as the returned object lives.
+std::unique_ptr<tbb::global_control> apply_thread_limit(const CommonOptions& options);
+
+/// Loads the scene, printing its size and any loader warnings to stderr.
+Scene load_scene_verbose(const std::string& spec);
+
+/// Writes `stats` as pretty JSON when --stats was given.
+void write_stats(const CommonOptions& options, const nlohmann::json& stats);
+
+/// Seconds since `start` on the steady clock.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace edacrt::cli

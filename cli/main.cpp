@@ -1,0 +1,33 @@
+// edacrt: the headless command-line tool. Renders images and traces ray files with any method.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "util/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "EDACRT Studio command-line tool: divide-and-conquer ray tracing without a stored "
+        "acceleration structure.\nRun 'edacrt COMMAND --help' for the options of a command.",
+        "edacrt"};
+    app.require_subcommand(1);
+    const auto run_render = edacrt::cli::add_render_command(app);
+    const auto run_trace = edacrt::cli::add_trace_command(app);
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        if (app.got_subcommand("render")) run_render();
+        if (app.got_subcommand("trace")) run_trace();
+    } catch (const edacrt::InputError& e) {
+        std::cerr << "edacrt: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "edacrt: error: out of memory\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "edacrt: internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,111 @@
+// edacrt render: primary rays with eye-light shading, to PNG.
+#include <chrono>
+#include <iostream>
+#include <optional>
+#include <vector>
+
+#include "commands.h"
+#include "common_options.h"
+#include "render/eye_light.h"
+#include "util/error.h"
+
+namespace edacrt::cli {
+namespace {
+
+struct RenderOptions {
+    CommonOptions common;
+    EyeLightSettings settings;
+    std::string out = "out/render.png";
+    std::vector<float> eye, look_at, up;
+    std::optional<float> fov;
+};
+
+glm::vec3 to_vec3(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
+
+/// The scene's own camera, else one that frames the scene; overridden piece by piece.
+Camera choose_camera(const Scene& scene, const RenderOptions& o) {
+    Camera camera = scene.camera.value_or(frame_box(scene.bounds()));
+    if (!o.eye.empty()) camera.eye = to_vec3(o.eye);
+    if (!o.look_at.empty()) camera.look_at = to_vec3(o.look_at);
+    if (!o.up.empty()) camera.up = to_vec3(o.up);
+    if (o.fov) camera.vfov_degrees = *o.fov;
+    validate(camera);
+    return camera;
+}
+
+void run(const RenderOptions& o) {
+    const auto threads = apply_thread_limit(o.common);
+    const Method method = parse_method(o.common.method);
+    const Scene scene = load_scene_verbose(o.common.scene);
+    const Camera camera = choose_camera(scene, o);
+
+    auto start = std::chrono::steady_clock::now();
+    const auto tracer = make_tracer(method);
+    tracer->set_scene(scene);
+    const double prepare_seconds = seconds_since(start);
+
+    start = std::chrono::steady_clock::now();
+    const EyeLightResult result = render_eye_light(scene, camera, *tracer, o.settings);
+    const double render_seconds = seconds_since(start);
+
+    const std::filesystem::path out(o.out);
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+    write_png(out, result.image);
+
+    const double mrays = double(result.stats.rays) / result.trace_seconds * 1e-6;
+    std::cout << "rendered " << o.settings.width << "x" << o.settings.height << " at "
+              << o.settings.spp << " spp with " << method_name(method) << ": " << result.stats.rays
+              << " rays traced in " << result.trace_seconds << " s (" << mrays
+              << " Mrays/s), written to " << o.out << "\n";
+
+    write_stats(o.common, {{"command", "render"},
+                           {"scene", scene.source},
+                           {"triangles", scene.triangle_count()},
+                           {"method", method_name(method)},
+                           {"width", o.settings.width},
+                           {"height", o.settings.height},
+                           {"spp", o.settings.spp},
+                           {"seed", o.settings.seed},
+                           {"rays", result.stats.rays},
+                           {"ray_box_tests", result.stats.ray_box_tests},
+                           {"ray_triangle_tests", result.stats.ray_triangle_tests},
+                           {"prepare_seconds", prepare_seconds},
+                           {"trace_seconds", result.trace_seconds},
+                           {"render_seconds", render_seconds},
+                           {"mrays_per_second", mrays}});
+}
+
+}  // namespace
+
+std::function<void()> add_render_command(CLI::App& app) {
+    auto options = std::make_shared<RenderOptions>();
+    RenderOptions& o = *options;
+    CLI::App* command = app.add_subcommand(
+        "render",
+        "Render camera rays with eye-light shading to a PNG.\n"
+        "Example: edacrt render --scene assets/cornell-box/CornellBox-Original.obj "
+        "--out out/cornell.png");
+    add_common_options(*command, o.common);
+    command->add_option("--width", o.settings.width, "image width in pixels")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    command->add_option("--height", o.settings.height, "image height in pixels")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    command->add_option("--spp", o.settings.spp, "samples per pixel (jittered when > 1)")
+        ->check(CLI::Range(1, 65536))
+        ->capture_default_str();
+    command->add_option("--seed", o.settings.seed, "seed of the pixel jitter")
+        ->capture_default_str();
+    command->add_option("--out", o.out, "output PNG")->capture_default_str();
+    const auto vec3_option = [&](const char* name, std::vector<float>& target, const char* what) {
+        command->add_option(name, target, what)->expected(3)->delimiter(',');
+    };
+    vec3_option("--eye", o.eye, "camera position X,Y,Z (default: frames the scene from +z)");
+    vec3_option("--look-at", o.look_at, "point the camera looks at X,Y,Z");
+    vec3_option("--up", o.up, "camera up vector X,Y,Z");
+    command->add_option("--fov", o.fov, "vertical field of view in degrees");
+    return [options] { run(*options); };
+}
+
+}  // namespace edacrt::cli

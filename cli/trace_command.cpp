@@ -1,0 +1,77 @@
+// edacrt trace: a ray file in, a hit file out, with any method; the differential-testing tool.
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+
+#include "commands.h"
+#include "common_options.h"
+#include "trace/ray_file.h"
+
+namespace edacrt::cli {
+namespace {
+
+struct TraceOptions {
+    CommonOptions common;
+    std::string rays_path;
+    std::string out_path;
+    bool any_hit = false;
+};
+
+void run(const TraceOptions& o) {
+    const auto threads = apply_thread_limit(o.common);
+    const Method method = parse_method(o.common.method);
+    const std::vector<Ray> rays = read_rays(o.rays_path);
+    const Scene scene = load_scene_verbose(o.common.scene);
+
+    auto start = std::chrono::steady_clock::now();
+    const auto tracer = make_tracer(method);
+    tracer->set_scene(scene);
+    const double prepare_seconds = seconds_since(start);
+
+    std::vector<Hit> hits(rays.size());
+    start = std::chrono::steady_clock::now();
+    const TraceStats stats = tracer->trace(rays, hits, o.any_hit ? Query::any : Query::closest);
+    const double trace_seconds = seconds_since(start);
+    write_hits(o.out_path, hits);
+
+    const auto hit_count =
+        std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.hit(); });
+    const double mrays = double(rays.size()) / trace_seconds * 1e-6;
+    std::cout << "traced " << rays.size() << " rays (" << (o.any_hit ? "any hit" : "closest hit")
+              << ") with " << method_name(method) << " in " << trace_seconds << " s: " << mrays
+              << " Mrays/s; " << hit_count << " hits; prepare " << prepare_seconds << " s\n";
+
+    write_stats(o.common, {{"command", "trace"},
+                           {"scene", scene.source},
+                           {"triangles", scene.triangle_count()},
+                           {"method", method_name(method)},
+                           {"query", o.any_hit ? "any" : "closest"},
+                           {"rays", stats.rays},
+                           {"hits", hit_count},
+                           {"ray_box_tests", stats.ray_box_tests},
+                           {"ray_triangle_tests", stats.ray_triangle_tests},
+                           {"prepare_seconds", prepare_seconds},
+                           {"trace_seconds", trace_seconds},
+                           {"mrays_per_second", mrays}});
+}
+
+}  // namespace
+
+std::function<void()> add_trace_command(CLI::App& app) {
+    auto options = std::make_shared<TraceOptions>();
+    TraceOptions& o = *options;
+    CLI::App* command = app.add_subcommand(
+        "trace",
+        "Trace a binary ray file and write a binary hit file.\n"
+        "Ray record: 8 float32 'ox oy oz dx dy dz tmin tmax' (32 bytes, little-endian).\n"
+        "Hit record: float32 t (+inf on a miss), int32 prim (-1 on a miss), float32 u, v.");
+    add_common_options(*command, o.common);
+    command->add_option("--rays", o.rays_path, "input ray file")->required();
+    command->add_option("--out", o.out_path, "output hit file")->required();
+    command->add_flag(
+        "--any-hit", o.any_hit,
+        "occlusion query: prim >= 0 when anything blocks the ray (t, u, v of some hit)");
+    return [options] { run(*options); };
+}
+
+}  // namespace edacrt::cli

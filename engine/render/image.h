@@ -1,0 +1,27 @@
+#pragma once
+#include <filesystem>
+#include <glm/vec3.hpp>
+#include <vector>
+
+namespace edacrt {
+
+/// Linear RGB pixels, row-major from the top-left.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec3> pixels;
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h)) {}
+    glm::vec3& at(int x, int y) { return pixels[std::size_t(y) * width + x]; }
+    const glm::vec3& at(int x, int y) const { return pixels[std::size_t(y) * width + x]; }
+};
+
+/// Writes 8-bit sRGB (values clamped to [0, 1]). Throws InputError when the file cannot be
+/// written.
+void write_png(const std::filesystem::path& path, const Image& image);
+
+/// Reads an 8-bit PNG back into linear RGB. Throws InputError.
+Image read_png(const std::filesystem::path& path);
+
+}  // namespace edacrt

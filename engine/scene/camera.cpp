@@ -1,0 +1,59 @@
+#include "scene/camera.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <string>
+
+#include "util/error.h"
+
+namespace edacrt {
+
+Camera frame_box(const Aabb& box, float vfov_degrees) {
+    Camera camera;
+    camera.vfov_degrees = vfov_degrees;
+    camera.look_at = box.center();
+    // Back off along +z until the bounding sphere fits the vertical field of view.
+    const float radius = std::max(0.5f * glm::length(box.extent()), 1e-6f);
+    const float distance = radius / std::sin(0.5f * glm::radians(vfov_degrees));
+    camera.eye = camera.look_at + glm::vec3(0.0f, 0.0f, distance);
+    return camera;
+}
+
+void validate(const Camera& camera) {
+    const auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    if (!finite(camera.eye) || !finite(camera.look_at) || !finite(camera.up))
+        throw InputError("camera: eye, look-at and up must be finite");
+    if (!(camera.vfov_degrees > 0.0f && camera.vfov_degrees < 180.0f))
+        throw InputError("camera: vertical field of view must be in (0, 180) degrees, got " +
+                         std::to_string(camera.vfov_degrees));
+    const glm::vec3 view = camera.look_at - camera.eye;
+    if (glm::length(view) == 0.0f) throw InputError("camera: eye and look-at are the same point");
+    if (glm::length(glm::cross(view, camera.up)) <=
+        1e-6f * glm::length(view) * glm::length(camera.up))
+        throw InputError("camera: up vector is zero or parallel to the view direction");
+}
+
+PinholeProjection::PinholeProjection(const Camera& camera, int width, int height)
+    : eye_(camera.eye) {
+    validate(camera);
+    const glm::vec3 forward = glm::normalize(camera.look_at - camera.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float half_height = std::tan(0.5f * glm::radians(camera.vfov_degrees));
+    const float half_width = half_height * float(width) / float(height);
+    top_left_ = forward - half_width * right + half_height * up;
+    step_x_ = (2.0f * half_width / float(width)) * right;
+    step_y_ = (-2.0f * half_height / float(height)) * up;
+}
+
+Ray PinholeProjection::ray(float x, float y) const {
+    Ray ray;
+    ray.org = eye_;
+    ray.dir = glm::normalize(top_left_ + x * step_x_ + y * step_y_);
+    return ray;
+}
+
+}  // namespace edacrt

@@ -1,0 +1,41 @@
+#pragma once
+#include <glm/vec3.hpp>
+
+#include "geometry/aabb.h"
+#include "geometry/ray.h"
+
+namespace edacrt {
+
+/// A pinhole camera.
+struct Camera {
+    glm::vec3 eye{0.0f, 0.0f, 1.0f};
+    glm::vec3 look_at{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float vfov_degrees = 45.0f;
+};
+
+/// A camera that looks at the box from the +z side (the open side of a Cornell box) and sees
+/// all of it.
+Camera frame_box(const Aabb& box, float vfov_degrees = 45.0f);
+
+/// Throws InputError when the camera cannot form an image (eye == look_at, up parallel to the
+/// view direction, fov outside (0, 180), non-finite values).
+void validate(const Camera& camera);
+
+/// Camera rays for an image of width x height: precomputes the image plane once.
+class PinholeProjection {
+  public:
+    PinholeProjection(const Camera& camera, int width, int height);
+
+    /// The ray through image position (x, y) in pixels; (0, 0) is the top-left corner of the
+    /// top-left pixel, (width, height) the bottom-right corner of the image.
+    Ray ray(float x, float y) const;
+
+  private:
+    glm::vec3 eye_;
+    glm::vec3 top_left_;  // direction to the image corner at distance 1
+    glm::vec3 step_x_;    // direction change per pixel
+    glm::vec3 step_y_;
+};
+
+}  // namespace edacrt

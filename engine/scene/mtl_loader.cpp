@@ -1,0 +1,152 @@
+#include "scene/mtl_loader.h"
+
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <system_error>
+
+#include "scene/text_scan.h"
+#include "util/error.h"
+
+namespace edacrt {
+namespace {
+
+using namespace text_scan;
+
+// MTL has a few dozen keywords in use; many more means garbage, which would otherwise cost a
+// warning per line.
+constexpr std::size_t kMaxUnmodelledKinds = 64;
+
+class MtlParser {
+  public:
+    MtlParser(std::string_view text, const std::string& source, std::vector<std::string>& warnings)
+        : lines_(text), source_(source), warnings_(warnings) {}
+
+    std::vector<Material> parse() {
+        std::string_view line;
+        while (lines_.next(line)) parse_line(line);
+        return std::move(materials_);
+    }
+
+  private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(source_ + ":" + std::to_string(lines_.number()) + ": " + what);
+    }
+
+    void parse_line(std::string_view line) {
+        if (line.find('\0') != std::string_view::npos) {
+            fail("NUL byte; this is not a text MTL file");
+        }
+        line = strip_comment(line);  // "Ka 0.63 0.065 0.05 # Red"
+        Tokens tokens(line);
+        std::string_view keyword;
+        if (!tokens.next(keyword)) return;
+        if (!is_keyword(keyword)) fail("unexpected " + quote(keyword) + " (not an MTL statement)");
+        if (equals_ignoring_case(keyword, "newmtl")) {
+            const std::string_view name = tokens.rest();
+            if (name.empty()) fail("newmtl without a material name");
+            materials_.emplace_back().name = name;
+            return;
+        }
+        if (materials_.empty()) fail(quote(keyword) + " before any newmtl");
+        Material& material = materials_.back();
+        const auto is = [&](std::string_view name) { return equals_ignoring_case(keyword, name); };
+        if (is("Kd")) {
+            material.kd = colour(tokens, keyword);
+        } else if (is("Ks")) {
+            material.ks = colour(tokens, keyword);
+        } else if (is("Ke")) {
+            material.ke = colour(tokens, keyword);
+        } else if (is("Ka")) {
+            colour(tokens, keyword);  // ambient is not modelled; common enough to accept quietly
+        } else if (is("Ns")) {
+            material.ns = single_number(tokens, keyword);
+        } else if (is("Ni")) {
+            material.ni = single_number(tokens, keyword);
+        } else if (is("illum")) {
+            material.illum = integer(tokens, keyword);
+        } else {
+            ignore(keyword);
+        }
+    }
+
+    /// A whole token as a finite float; same rules as the OBJ parser.
+    float number(std::string_view token) const {
+        float value = 0.0f;
+        switch (parse_float(token, value)) {
+            case NumberStatus::ok:
+                return value;
+            case NumberStatus::malformed:
+                fail("bad number " + quote(token));
+            case NumberStatus::out_of_range:
+                fail("number " + quote(token) + " is out of range for float");
+            case NumberStatus::non_finite:
+                fail("non-finite number " + quote(token));
+        }
+        fail("bad number " + quote(token));
+    }
+
+    /// Three numbers, or one for a grey.
+    glm::vec3 colour(Tokens& tokens, std::string_view keyword) const {
+        float values[3];
+        int count = 0;
+        std::string_view token;
+        while (tokens.next(token)) {
+            if (count == 3) fail(quote(keyword) + " needs 1 or 3 numbers, found more");
+            values[count++] = number(token);
+        }
+        if (count == 1) return glm::vec3(values[0]);
+        if (count == 3) return glm::vec3(values[0], values[1], values[2]);
+        fail(quote(keyword) + " needs 1 or 3 numbers, found " + std::to_string(count));
+    }
+
+    float single_number(Tokens& tokens, std::string_view keyword) const {
+        std::string_view token;
+        if (!tokens.next(token)) fail(quote(keyword) + " needs a number");
+        const float value = number(token);
+        if (tokens.next(token)) fail(quote(keyword) + " needs exactly one number");
+        return value;
+    }
+
+    int integer(Tokens& tokens, std::string_view keyword) const {
+        std::string_view token;
+        if (!tokens.next(token)) fail(quote(keyword) + " needs an integer");
+        int value = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (ec != std::errc{} || end != token.data() + token.size()) {
+            fail("bad integer " + quote(token) + " after " + quote(keyword));
+        }
+        if (tokens.next(token)) fail(quote(keyword) + " needs exactly one integer");
+        return value;
+    }
+
+    /// Reports each unmodelled keyword once, at its first line.
+    void ignore(std::string_view keyword) {
+        std::string lower(keyword);
+        for (char& c : lower) c = to_lower(c);
+        for (const std::string& seen : ignored_)
+            if (seen == lower) return;
+        if (ignored_.size() == kMaxUnmodelledKinds) {
+            fail("more than " + std::to_string(kMaxUnmodelledKinds) +
+                 " kinds of unknown statement; this does not look like an MTL file");
+        }
+        ignored_.push_back(std::move(lower));
+        warnings_.push_back(source_ + ":" + std::to_string(lines_.number()) + ": MTL feature " +
+                            quote(keyword) + " is not modelled (ignored)");
+    }
+
+    LineReader lines_;
+    const std::string& source_;
+    std::vector<std::string>& warnings_;
+    std::vector<Material> materials_;
+    std::vector<std::string> ignored_;  // lower case
+};
+
+}  // namespace
+
+std::vector<Material> parse_mtl(std::string_view text, const std::string& source_name,
+                                std::vector<std::string>& warnings) {
+    return MtlParser(text, source_name, warnings).parse();
+}
+
+}  // namespace edacrt

@@ -1,0 +1,49 @@
+#include "scene/text_scan.h"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace edacrt::text_scan {
+
+/// A token for a message: control bytes escaped, long tokens cut, so garbage input cannot
+/// garble the message.
+std::string quote(std::string_view text) {
+    constexpr std::size_t kMax = 40;
+    std::string out = "'";
+    for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x20 && c != 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            constexpr char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 15];
+        }
+    }
+    if (text.size() > kMax) out += "...";
+    return out + "'";
+}
+
+/// Parses a whole token as a finite float. from_chars is exact and allocation-free, but rejects
+/// a leading '+' and reports underflow as out of range; both are accepted here.
+NumberStatus parse_float(std::string_view token, float& value) {
+    const char* first = token.data();
+    const char* last = first + token.size();
+    if (first != last && *first == '+') {
+        ++first;
+        if (first != last && *first == '-') return NumberStatus::malformed;
+    }
+    const auto [end, ec] = std::from_chars(first, last, value);
+    if (ec == std::errc::invalid_argument || end != last) return NumberStatus::malformed;
+    if (ec == std::errc::result_out_of_range) {
+        double wide = 0.0;
+        const auto [wide_end, wide_ec] = std::from_chars(first, last, wide);
+        if (wide_ec != std::errc{} || !(std::abs(wide) < 1.0)) return NumberStatus::out_of_range;
+        value = static_cast<float>(wide);  // a value below float's range becomes 0 or subnormal
+    }
+    return std::isfinite(value) ? NumberStatus::ok : NumberStatus::non_finite;
+}
+
+}  // namespace edacrt::text_scan

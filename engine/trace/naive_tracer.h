@@ -1,0 +1,19 @@
+#pragma once
+#include <vector>
+
+#include "trace/tracer.h"
+
+namespace edacrt {
+
+/// The reference: every ray against every triangle, rays spread over threads with oneTBB.
+class NaiveTracer final : public Tracer {
+  public:
+    Method method() const override { return Method::naive; }
+    void set_scene(const Scene& scene) override;
+    TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) override;
+
+  private:
+    std::vector<Triangle> triangles_;
+};
+
+}  // namespace edacrt

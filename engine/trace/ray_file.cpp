@@ -1,0 +1,76 @@
+#include "trace/ray_file.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "util/error.h"
+
+namespace edacrt {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "ray files are little-endian");
+
+template <typename Record>
+std::vector<Record> read_records(const std::filesystem::path& path, const char* what) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw InputError(path.string() + ": cannot open " + what + " file");
+    const std::streamoff size = in.tellg();
+    if (size % std::streamoff(sizeof(Record)) != 0)
+        throw InputError(path.string() + ": size " + std::to_string(size) +
+                         " bytes is not a multiple of the " + std::to_string(sizeof(Record)) +
+                         "-byte " + what + " record");
+    std::vector<Record> records(std::size_t(size) / sizeof(Record));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(records.data()), size))
+        throw InputError(path.string() + ": read error");
+    return records;
+}
+
+template <typename Record>
+void write_records(const std::filesystem::path& path, std::span<const Record> records) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(records.data()), std::streamsize(records.size_bytes()));
+    if (!out) throw InputError(path.string() + ": cannot write file");
+}
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+std::string validate_ray(const Ray& ray) {
+    if (!finite(ray.org)) return "non-finite (NaN or inf) origin";
+    if (!finite(ray.dir)) return "non-finite (NaN or inf) direction";
+    // A direction below the normal range would overflow the reciprocals the tests precompute.
+    const float longest = std::max({std::abs(ray.dir.x), std::abs(ray.dir.y), std::abs(ray.dir.z)});
+    if (longest < std::numeric_limits<float>::min()) return "zero-length (or denormal) direction";
+    if (std::isnan(ray.tmin) || std::isnan(ray.tmax)) return "NaN tmin or tmax";
+    if (!(ray.tmin <= ray.tmax)) return "tmin greater than tmax";
+    return {};
+}
+
+std::vector<Ray> read_rays(const std::filesystem::path& path) {
+    std::vector<Ray> rays = read_records<Ray>(path, "ray");
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        if (const std::string problem = validate_ray(rays[i]); !problem.empty())
+            throw InputError(path.string() + ": ray " + std::to_string(i) + ": " + problem);
+    return rays;
+}
+
+void write_rays(const std::filesystem::path& path, std::span<const Ray> rays) {
+    write_records(path, rays);
+}
+
+std::vector<Hit> read_hits(const std::filesystem::path& path) {
+    return read_records<Hit>(path, "hit");
+}
+
+void write_hits(const std::filesystem::path& path, std::span<const Hit> hits) {
+    write_records(path, hits);
+}
+
+}  // namespace edacrt

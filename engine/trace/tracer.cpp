@@ -1,0 +1,50 @@
+#include "trace/tracer.h"
+
+#include "trace/naive_tracer.h"
+#include "util/error.h"
+
+namespace edacrt {
+
+namespace {
+constexpr Method kMethods[] = {Method::naive};
+}
+
+std::unique_ptr<Tracer> make_tracer(Method method) {
+    switch (method) {
+        case Method::naive:
+            return std::make_unique<NaiveTracer>();
+    }
+    throw InputError("unknown tracing method");
+}
+
+std::string_view method_name(Method method) {
+    switch (method) {
+        case Method::naive:
+            return "naive";
+    }
+    return "?";
+}
+
+Method parse_method(std::string_view name) {
+    for (Method m : kMethods)
+        if (method_name(m) == name) return m;
+    std::string known;
+    for (const std::string& n : method_names()) known += (known.empty() ? "" : ", ") + n;
+    throw InputError("unknown method '" + std::string(name) + "' (known: " + known + ")");
+}
+
+std::vector<std::string> method_names() {
+    std::vector<std::string> names;
+    for (Method m : kMethods) names.emplace_back(method_name(m));
+    return names;
+}
+
+std::vector<Triangle> gather_triangles(const Scene& scene) {
+    std::vector<Triangle> triangles;
+    triangles.reserve(scene.triangles.size());
+    for (const auto& [a, b, c] : scene.triangles)
+        triangles.push_back({scene.positions[a], scene.positions[b], scene.positions[c]});
+    return triangles;
+}
+
+}  // namespace edacrt

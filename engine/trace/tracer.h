@@ -1,0 +1,66 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geometry/ray.h"
+#include "geometry/triangle.h"
+#include "scene/scene.h"
+
+namespace edacrt {
+
+/// The tracing methods behind the Tracer interface.
+enum class Method { naive };
+
+/// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
+enum class Query { closest, any };
+
+/// What one trace call did.
+struct TraceStats {
+    std::uint64_t rays = 0;
+    std::uint64_t ray_box_tests = 0;
+    std::uint64_t ray_triangle_tests = 0;
+
+    TraceStats& operator+=(const TraceStats& o) {
+        rays += o.rays;
+        ray_box_tests += o.ray_box_tests;
+        ray_triangle_tests += o.ray_triangle_tests;
+        return *this;
+    }
+};
+
+/// Traces batches of rays against one scene. Every method returns the same hits for the same
+/// rays (up to ties between triangles hit at the same distance).
+class Tracer {
+  public:
+    virtual ~Tracer() = default;
+
+    virtual Method method() const = 0;
+
+    /// Prepares for batches against `scene`: per-frame triangle data, acceleration structures.
+    /// Call again whenever the geometry changes. The tracer keeps no reference to `scene`.
+    virtual void set_scene(const Scene& scene) = 0;
+
+    /// hits[i] receives the closest hit of rays[i] in [tmin, tmax] (Query::closest) or, for
+    /// Query::any, a hit with prim >= 0 when anything occludes the ray. Rays must be valid
+    /// (finite origin, finite non-zero direction, tmin <= tmax); see validate_ray().
+    virtual TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) = 0;
+};
+
+std::unique_ptr<Tracer> make_tracer(Method method);
+
+std::string_view method_name(Method method);
+
+/// "naive" -> Method::naive; throws InputError listing the known names.
+Method parse_method(std::string_view name);
+
+/// The names of all methods, for help texts.
+std::vector<std::string> method_names();
+
+/// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
+std::vector<Triangle> gather_triangles(const Scene& scene);
+
+}  // namespace edacrt

@@ -1,0 +1,15 @@
+#pragma once
+// Errors raised at the engine's boundaries (loaders, ray files, parameters). Hot code asserts.
+#include <stdexcept>
+#include <string>
+
+namespace edacrt {
+
+/// Bad input from outside: a file, a ray set, a parameter. The message names what was wrong
+/// and where ("scene.obj:12: face index 9 out of range (8 vertices)").
+class InputError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+}  // namespace edacrt

@@ -1,0 +1,57 @@
+#include "scene/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "util/error.h"
+
+namespace edacrt {
+namespace {
+
+TEST(Camera, CentreRayLooksAtTarget) {
+    const Camera camera{{0, 1, 5}, {0, 1, 0}, {0, 1, 0}, 40.0f};
+    const PinholeProjection projection(camera, 64, 32);
+    const Ray ray = projection.ray(32.0f, 16.0f);
+    EXPECT_EQ(ray.org, camera.eye);
+    EXPECT_NEAR(ray.dir.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(ray.dir.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(ray.dir.z, -1.0f, 1e-6f);
+}
+
+TEST(Camera, CornersSpanTheFieldOfView) {
+    const Camera camera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0f};
+    const PinholeProjection projection(camera, 200, 100);  // aspect 2: half-width tan = 2
+    const Ray top_left = projection.ray(0.0f, 0.0f);
+    EXPECT_NEAR(top_left.dir.y / -top_left.dir.z, 1.0f, 1e-5f);   // top edge at 45 degrees
+    EXPECT_NEAR(top_left.dir.x / -top_left.dir.z, -2.0f, 1e-5f);  // left is -x
+    EXPECT_NEAR(glm::length(top_left.dir), 1.0f, 1e-6f);
+}
+
+TEST(Camera, FrameBoxSeesTheWholeBox) {
+    const Aabb box{{-1, 0, -1}, {1, 2, 1}};
+    const Camera camera = frame_box(box, 45.0f);
+    EXPECT_GT(camera.eye.z, box.hi.z);
+    EXPECT_EQ(camera.look_at, box.center());
+    // Every corner of the box lies within the half field of view around the view axis.
+    const glm::vec3 axis = glm::normalize(camera.look_at - camera.eye);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y,
+                               i & 4 ? box.hi.z : box.lo.z);
+        const float cosine = glm::dot(axis, glm::normalize(corner - camera.eye));
+        EXPECT_GE(cosine, std::cos(glm::radians(22.5f)) - 1e-6f);
+    }
+}
+
+TEST(Camera, InvalidCamerasAreRejected) {
+    EXPECT_THROW(validate(Camera{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 45}), InputError);
+    EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 0, 1}, 45}), InputError);
+    EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 0}), InputError);
+    EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 180}), InputError);
+    EXPECT_THROW(validate(Camera{{NAN, 0, 1}, {0, 0, 0}, {0, 1, 0}, 45}), InputError);
+    EXPECT_NO_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 45}));
+}
+
+}  // namespace
+}  // namespace edacrt

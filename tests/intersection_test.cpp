@@ -1,0 +1,206 @@
+// Ray/triangle and ray/box kernels: hand-computed cases, the numerically hard ones, and a
+// comparison with a double-precision reference on random rays.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "geometry/ray_box.h"
+#include "geometry/triangle.h"
+
+namespace edacrt {
+namespace {
+
+constexpr Triangle kUnitTriangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+
+bool hit_triangle(const Ray& ray, const Triangle& tri, TriangleHit& out) {
+    return intersect_triangle(make_watertight_ray(ray), tri, ray.tmin, ray.tmax, out);
+}
+
+TEST(TriangleIntersection, HandComputedHit) {
+    const Ray ray{{0.25f, 0.5f, 2.0f}, {0, 0, -1}};
+    TriangleHit hit;
+    ASSERT_TRUE(hit_triangle(ray, kUnitTriangle, hit));
+    EXPECT_FLOAT_EQ(hit.t, 2.0f);
+    EXPECT_FLOAT_EQ(hit.u, 0.25f);  // weight of p1 = (1,0,0)
+    EXPECT_FLOAT_EQ(hit.v, 0.5f);   // weight of p2 = (0,1,0)
+}
+
+TEST(TriangleIntersection, BothFacesAreHit) {
+    const Ray ray{{0.2f, 0.2f, -3.0f}, {0, 0, 1}};
+    TriangleHit hit;
+    ASSERT_TRUE(hit_triangle(ray, kUnitTriangle, hit));
+    EXPECT_FLOAT_EQ(hit.t, 3.0f);
+}
+
+TEST(TriangleIntersection, ObliqueRay) {
+    // From (1,1,1) towards (0.2, 0.3, 0): direction (-0.8, -0.7, -1), t = 1.
+    const Ray ray{{1, 1, 1}, {-0.8f, -0.7f, -1.0f}};
+    TriangleHit hit;
+    ASSERT_TRUE(hit_triangle(ray, kUnitTriangle, hit));
+    EXPECT_NEAR(hit.t, 1.0f, 1e-6f);
+    EXPECT_NEAR(hit.u, 0.2f, 1e-6f);
+    EXPECT_NEAR(hit.v, 0.3f, 1e-6f);
+}
+
+TEST(TriangleIntersection, Misses) {
+    TriangleHit hit;
+    EXPECT_FALSE(hit_triangle({{0.6f, 0.6f, 1}, {0, 0, -1}}, kUnitTriangle, hit));  // outside
+    EXPECT_FALSE(hit_triangle({{0.2f, 0.2f, 1}, {0, 0, 1}}, kUnitTriangle, hit));   // behind
+    EXPECT_FALSE(hit_triangle({{0.2f, 0.2f, 1}, {1, 0, 0}}, kUnitTriangle, hit));   // parallel
+}
+
+TEST(TriangleIntersection, RespectsTminAndTmax) {
+    TriangleHit hit;
+    EXPECT_FALSE(hit_triangle({{0.2f, 0.2f, 2}, {0, 0, -1}, 0.0f, 1.5f}, kUnitTriangle, hit));
+    EXPECT_FALSE(hit_triangle({{0.2f, 0.2f, 2}, {0, 0, -1}, 2.5f, kInfinity}, kUnitTriangle, hit));
+    EXPECT_TRUE(hit_triangle({{0.2f, 0.2f, 2}, {0, 0, -1}, 2.0f, 2.0f}, kUnitTriangle, hit));
+}
+
+TEST(TriangleIntersection, DegenerateTrianglesAreNeverHit) {
+    TriangleHit hit;
+    const Triangle point{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    const Triangle line{{0, 0, 0}, {1, 1, 0}, {2, 2, 0}};
+    EXPECT_FALSE(hit_triangle({{0, 0, 1}, {0, 0, -1}}, point, hit));
+    EXPECT_FALSE(hit_triangle({{1, 1, 1}, {0, 0, -1}}, line, hit));
+}
+
+TEST(TriangleIntersection, EdgeAndVertexHits) {
+    TriangleHit hit;
+    EXPECT_TRUE(hit_triangle({{0.5f, 0.0f, 1}, {0, 0, -1}}, kUnitTriangle, hit));  // on an edge
+    EXPECT_TRUE(hit_triangle({{0.0f, 0.0f, 1}, {0, 0, -1}}, kUnitTriangle, hit));  // on a vertex
+    EXPECT_TRUE(hit_triangle({{0.5f, 0.5f, 1}, {0, 0, -1}}, kUnitTriangle, hit));  // hypotenuse
+}
+
+TEST(TriangleIntersection, HugeAndTinyCoordinates) {
+    for (const float scale : {1e-30f, 1e-20f, 1e-13f, 1e-6f, 1e6f, 1e12f, 1e30f}) {
+        const Triangle tri{kUnitTriangle.p0 * scale, kUnitTriangle.p1 * scale,
+                           kUnitTriangle.p2 * scale};
+        TriangleHit hit;
+        ASSERT_TRUE(hit_triangle({{0.25f * scale, 0.25f * scale, scale}, {0, 0, -1}}, tri, hit))
+            << scale;
+        EXPECT_NEAR(hit.t / scale, 1.0f, 1e-6f) << scale;
+    }
+    // A far-away triangle: 1e6 units from the origin, 1 unit wide.
+    const Triangle far{{1e6f, 0, 0}, {1e6f, 1, 0}, {1e6f, 0, 1}};
+    TriangleHit hit;
+    ASSERT_TRUE(hit_triangle({{0, 0.25f, 0.25f}, {1, 0, 0}}, far, hit));
+    EXPECT_FLOAT_EQ(hit.t, 1e6f);
+}
+
+/// Double-precision reference (Moller-Trumbore); returns barycentrics to judge the margin.
+bool reference_hit(const Ray& ray, const Triangle& tri, double& t, double& u, double& v) {
+    const auto d = [](const glm::vec3& p) { return glm::dvec3(p); };
+    const glm::dvec3 e1 = d(tri.p1) - d(tri.p0), e2 = d(tri.p2) - d(tri.p0);
+    const glm::dvec3 p = glm::cross(d(ray.dir), e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0.0) return false;
+    const glm::dvec3 s = d(ray.org) - d(tri.p0);
+    u = glm::dot(s, p) / det;
+    const glm::dvec3 q = glm::cross(s, e1);
+    v = glm::dot(d(ray.dir), q) / det;
+    t = glm::dot(e2, q) / det;
+    return true;
+}
+
+TEST(TriangleIntersection, AgreesWithDoublePrecisionOnRandomRays) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
+    const auto point = [&] { return glm::vec3(coord(rng), coord(rng), coord(rng)); };
+    int decided = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const Triangle tri{point(), point(), point()};
+        const Ray ray{3.0f * point(), point()};
+        double t, u, v;
+        if (!reference_hit(ray, tri, t, u, v)) continue;
+        const double margin = std::min({u, v, 1.0 - u - v});
+        if (std::abs(margin) < 1e-4 || t < 1e-3) continue;  // too close to call in float
+        ++decided;
+        TriangleHit hit;
+        const bool got = hit_triangle(ray, tri, hit);
+        ASSERT_EQ(got, margin > 0.0) << "ray " << i;
+        if (got) {
+            EXPECT_NEAR(hit.t, t, 1e-4 * std::max(1.0, t)) << "ray " << i;
+            EXPECT_NEAR(hit.u, u, 1e-3) << "ray " << i;
+            EXPECT_NEAR(hit.v, v, 1e-3) << "ray " << i;
+        }
+    }
+    EXPECT_GT(decided, 100000);
+}
+
+// --- Slab test -------------------------------------------------------------------------------
+
+const Aabb kUnitBox{{0, 0, 0}, {1, 1, 1}};
+
+bool hit_box(const Ray& ray, const Aabb& box, float& t_entry) {
+    return intersect_box(make_slab_ray(ray), box, ray.tmax, t_entry);
+}
+
+TEST(BoxIntersection, HandComputed) {
+    float t;
+    ASSERT_TRUE(hit_box({{-1, 0.5f, 0.5f}, {1, 0, 0}}, kUnitBox, t));
+    EXPECT_FLOAT_EQ(t, 1.0f);
+    ASSERT_TRUE(hit_box({{0.5f, 0.5f, 0.5f}, {1, 0, 0}}, kUnitBox, t));  // origin inside
+    EXPECT_FLOAT_EQ(t, 0.0f);
+    EXPECT_FALSE(hit_box({{2, 0.5f, 0.5f}, {1, 0, 0}}, kUnitBox, t));            // behind
+    EXPECT_FALSE(hit_box({{-1, 2.0f, 0.5f}, {1, 0, 0}}, kUnitBox, t));           // beside
+    EXPECT_FALSE(hit_box({{-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 0.5f}, kUnitBox, t));  // tmax short
+}
+
+TEST(BoxIntersection, AxisParallelRaysWithSignedZeros) {
+    float t;
+    for (const float zero : {0.0f, -0.0f}) {
+        // Parallel to y and z, inside their slabs: hit.
+        EXPECT_TRUE(hit_box({{-1, 0.5f, 0.5f}, {1, zero, zero}}, kUnitBox, t));
+        EXPECT_TRUE(hit_box({{0.5f, 0.5f, 2}, {zero, zero, -1}}, kUnitBox, t));
+        // Parallel and outside a slab: miss, whatever the sign of zero.
+        EXPECT_FALSE(hit_box({{-1, 1.5f, 0.5f}, {1, zero, zero}}, kUnitBox, t));
+        EXPECT_FALSE(hit_box({{-1, -0.5f, 0.5f}, {1, zero, zero}}, kUnitBox, t));
+    }
+}
+
+TEST(BoxIntersection, OriginOnSlabPlaneNeverProducesNaN) {
+    // (plane - org) * (1 / 0) is 0 * inf = NaN; such a grazing ray counts as a hit.
+    float t = -1.0f;
+    for (const float zero : {0.0f, -0.0f}) {
+        ASSERT_TRUE(hit_box({{-1, 0.0f, 0.5f}, {1, zero, 0}}, kUnitBox, t));
+        EXPECT_FLOAT_EQ(t, 1.0f);
+        ASSERT_TRUE(hit_box({{-1, 1.0f, 1.0f}, {1, zero, zero}}, kUnitBox, t));
+        EXPECT_FALSE(std::isnan(t));
+    }
+}
+
+TEST(BoxIntersection, FlatBoxes) {
+    const Aabb flat{{0, 0, 0.5f}, {1, 1, 0.5f}};  // a box of zero thickness, like one triangle
+    float t;
+    EXPECT_TRUE(hit_box({{0.5f, 0.5f, 2}, {0, 0, -1}}, flat, t));
+    EXPECT_FLOAT_EQ(t, 1.5f);
+    EXPECT_TRUE(hit_box({{0.5f, 0.5f, 2}, {0.01f, 0.01f, -1}}, flat, t));
+}
+
+TEST(BoxIntersection, ConservativeForRaysThatHitTriangles) {
+    // Whenever a ray hits a triangle, it must hit the triangle's bounding box no later.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
+    const auto point = [&] { return glm::vec3(coord(rng), coord(rng), coord(rng)); };
+    int hits = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const float scale = std::pow(10.0f, float(i % 13) - 6.0f);
+        const Triangle tri{scale * point(), scale * point(), scale * point()};
+        const Ray ray{3.0f * scale * point(), point()};
+        TriangleHit hit;
+        if (!hit_triangle(ray, tri, hit)) continue;
+        ++hits;
+        Aabb box;
+        box.extend(tri.p0);
+        box.extend(tri.p1);
+        box.extend(tri.p2);
+        float t_entry;
+        ASSERT_TRUE(hit_box(ray, box, t_entry)) << "ray " << i;
+        EXPECT_LE(t_entry, hit.t) << "ray " << i;
+    }
+    EXPECT_GT(hits, 1000);
+}
+
+}  // namespace
+}  // namespace edacrt

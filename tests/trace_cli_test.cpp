@@ -1,0 +1,125 @@
+// The edacrt tool: 'trace' equals calling the engine directly; bad input fails cleanly.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "cli_runner.h"
+#include "scene/builtin_scenes.h"
+#include "test_paths.h"
+#include "trace/naive_tracer.h"
+#include "trace/ray_file.h"
+
+namespace edacrt {
+namespace {
+
+class TraceCli : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            std::filesystem::temp_directory_path() / ("edacrt_cli_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    std::filesystem::path dir_;
+};
+
+std::vector<Ray> random_rays(std::size_t count, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> coord(-1.5f, 1.5f);
+    std::vector<Ray> rays(count);
+    for (Ray& ray : rays) {
+        ray.org = {coord(rng), coord(rng), coord(rng)};
+        ray.dir = {coord(rng), coord(rng), coord(rng)};
+        if (ray.dir == glm::vec3(0.0f)) ray.dir.z = 1.0f;
+        if (rng() % 4 == 0) ray.tmax = 0.5f;  // some finite segments
+    }
+    return rays;
+}
+
+TEST_F(TraceCli, HitFileEqualsTheEngine) {
+    const std::string spec = "builtin:soup:count=300,seed=4";
+    const std::vector<Ray> rays = random_rays(5000, 1);
+    write_rays(path("rays.bin"), rays);
+
+    const Scene scene = make_builtin_scene(spec);
+    NaiveTracer tracer;
+    tracer.set_scene(scene);
+    for (const bool any_hit : {false, true}) {
+        const auto result =
+            test::run_cli("trace --scene " + spec + " --rays " + path("rays.bin") + " --out " +
+                          path("hits.bin") + " --method naive" + (any_hit ? " --any-hit" : ""));
+        ASSERT_EQ(result.exit_code, 0) << result.output;
+        EXPECT_NE(result.output.find("Mrays/s"), std::string::npos) << result.output;
+
+        std::vector<Hit> expected(rays.size());
+        tracer.trace(rays, expected, any_hit ? Query::any : Query::closest);
+        const std::vector<Hit> got = read_hits(path("hits.bin"));
+        ASSERT_EQ(got.size(), expected.size());
+        std::size_t hit_count = 0;
+        for (std::size_t i = 0; i < got.size(); ++i) {
+            ASSERT_EQ(got[i].prim, expected[i].prim) << "ray " << i;
+            ASSERT_EQ(got[i].t, expected[i].t) << "ray " << i;
+            ASSERT_EQ(got[i].u, expected[i].u) << "ray " << i;
+            ASSERT_EQ(got[i].v, expected[i].v) << "ray " << i;
+            hit_count += got[i].hit();
+        }
+        EXPECT_GT(hit_count, 100u);  // the ray set actually exercises hits
+        EXPECT_LT(hit_count, rays.size());
+    }
+}
+
+TEST_F(TraceCli, StatsFileIsWritten) {
+    write_rays(path("rays.bin"), random_rays(100, 2));
+    const auto result = test::run_cli("trace --scene builtin:sphere:subdiv=2 --rays " +
+                                      path("rays.bin") + " --out " + path("hits.bin") +
+                                      " --stats " + path("stats.json") + " --threads 1");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    std::ifstream in(path("stats.json"));
+    const std::string json((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(json.find("\"ray_triangle_tests\""), std::string::npos);
+    EXPECT_NE(json.find("\"rays\": 100"), std::string::npos);
+}
+
+TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
+    std::ofstream(path("odd.bin"), std::ios::binary) << std::string(40, '\0');
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"trace --scene builtin:cornell --rays " + path("odd.bin") + " --out " + path("h.bin"),
+         "not a multiple of the 32-byte ray record"},
+        {"trace --scene builtin:cornell --rays /no/rays.bin --out " + path("h.bin"),
+         "cannot open ray file"},
+        {"trace --scene /no/scene.obj --rays " + path("odd.bin") + " --out " + path("h.bin"),
+         "error"},
+        {"render --scene builtin:nothing --out " + path("x.png"), "unknown built-in scene"},
+        {"render --scene builtin:cornell --method magic --out " + path("x.png"),
+         "unknown method 'magic'"},
+        {"render --scene builtin:cornell --width 0 --out " + path("x.png"), "--width"},
+        {"render --scene builtin:cornell --fov 200 --out " + path("x.png"), "field of view"},
+        {"render --scene builtin:cornell --eye 1,2 --out " + path("x.png"), "--eye"},
+        {"frobnicate", "subcommand"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(c.args);
+        EXPECT_NE(result.exit_code, 0) << c.args;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
+                                                                    << result.output;
+    }
+}
+
+TEST_F(TraceCli, HelpExplainsTheCommands) {
+    const auto result = test::run_cli("--help");
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_NE(result.output.find("render"), std::string::npos);
+    EXPECT_NE(result.output.find("trace"), std::string::npos);
+    const auto trace_help = test::run_cli("trace --help");
+    EXPECT_NE(trace_help.output.find("ox oy oz dx dy dz tmin tmax"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -4,11 +4,13 @@
 // between the triangles: the edge functions of a shared edge are computed from the same two
 // sheared vertices and are exact negatives of each other, and exact zeros are recomputed in
 // double precision. This needs -ffp-contract=off (see CMakeLists.txt).
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <utility>
 
+#include "geometry/aabb.h"
 #include "geometry/ray.h"
 
 namespace edacrt {
@@ -90,6 +92,22 @@ inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri, floa
         return finish_hit(ud, vd, wd, double(az), double(bz), double(cz), tmin, tmax, out);
     }
     return finish_hit(u, v, w, az, bz, cz, tmin, tmax, out);
+}
+
+/// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight
+/// test rounds at the scale of the coordinates, so it may accept a ray that passes a few ulps
+/// outside the exact triangle (or a hit at t = -0 from an origin on the surface); a divide-and-
+/// conquer filter or a BVH that culls with these boxes never rejects such a ray.
+inline Aabb conservative_bounds(const Triangle& tri) {
+    Aabb box;
+    box.extend(tri.p0);
+    box.extend(tri.p1);
+    box.extend(tri.p2);
+    const glm::vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+    const float pad = std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
+    box.lo -= glm::vec3(pad);
+    box.hi += glm::vec3(pad);
+    return box;
 }
 
 /// The unnormalised geometric normal, oriented by the winding p0 -> p1 -> p2.

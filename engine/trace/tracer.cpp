@@ -1,18 +1,23 @@
 #include "trace/tracer.h"
 
+#include "trace/edacrt_tracer.h"
 #include "trace/naive_tracer.h"
 #include "util/error.h"
 
 namespace edacrt {
 
 namespace {
-constexpr Method kMethods[] = {Method::naive};
+constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::naive};
 }
 
 std::unique_ptr<Tracer> make_tracer(Method method) {
     switch (method) {
         case Method::naive:
             return std::make_unique<NaiveTracer>();
+        case Method::edacrt:
+            return std::make_unique<EdacrtTracer>(EdacrtParams{}, Method::edacrt);
+        case Method::dacrt:
+            return std::make_unique<EdacrtTracer>(EdacrtParams::dacrt(), Method::dacrt);
     }
     throw InputError("unknown tracing method");
 }
@@ -21,6 +26,10 @@ std::string_view method_name(Method method) {
     switch (method) {
         case Method::naive:
             return "naive";
+        case Method::edacrt:
+            return "edacrt";
+        case Method::dacrt:
+            return "dacrt";
     }
     return "?";
 }

@@ -1,0 +1,248 @@
+// Every tracer agrees with the naive reference on many random and adversarial ray sets:
+// identical hit/miss, t within 1e-6 relative, the same triangle unless two are hit at the same t.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <random>
+
+#include "scene/builtin_scenes.h"
+#include "scene/obj_loader.h"
+#include "test_paths.h"
+#include "trace/edacrt_tracer.h"
+#include "trace/naive_tracer.h"
+#include "util/error.h"
+
+namespace edacrt {
+namespace {
+
+/// Overlapping, coplanar and duplicated triangles: ties and shared planes everywhere.
+Scene coplanar_scene() {
+    Scene scene = make_builtin_scene("builtin:soup:count=200,seed=5,size=0.4");
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
+    for (int i = 0; i < 300; ++i) {
+        const auto base = std::uint32_t(scene.positions.size());
+        const float z = (i % 3 == 0) ? 0.0f : 0.5f;  // two shared planes
+        for (int k = 0; k < 3; ++k) scene.positions.emplace_back(coord(rng), coord(rng), z);
+        scene.triangles.push_back({base, base + 1, base + 2});
+        if (i % 10 == 0) scene.triangles.push_back({base, base + 1, base + 2});  // duplicate
+    }
+    scene.triangle_materials.assign(scene.triangles.size(), 0);
+    return scene;
+}
+
+struct RaySets {
+    std::vector<std::pair<std::string, std::vector<Ray>>> sets;
+};
+
+/// Camera rays, random rays from inside, rays starting on surfaces, axis-parallel rays, short
+/// segments.
+RaySets make_ray_sets(const Scene& scene, std::uint32_t seed) {
+    RaySets out;
+    const Aabb box = scene.bounds();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto inside = [&] {
+        return box.lo + glm::vec3(unit(rng), unit(rng), unit(rng)) * box.extent();
+    };
+    const auto direction = [&] {
+        glm::vec3 d;
+        do d = glm::vec3(unit(rng), unit(rng), unit(rng)) * 2.0f - 1.0f;
+        while (glm::dot(d, d) > 1.0f || glm::dot(d, d) < 1e-4f);
+        return glm::normalize(d);
+    };
+
+    std::vector<Ray> camera;
+    const Camera cam = scene.camera.value_or(frame_box(box));
+    const PinholeProjection projection(cam, 64, 48);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) camera.push_back(projection.ray(x + unit(rng), y + unit(rng)));
+    out.sets.emplace_back("camera", std::move(camera));
+
+    std::vector<Ray> random;
+    for (int i = 0; i < 2500; ++i) random.push_back({inside(), direction()});
+    out.sets.emplace_back("random inside", std::move(random));
+
+    std::vector<Ray> on_surface;
+    for (int i = 0; i < 2000; ++i) {
+        const auto& tri = scene.triangles[rng() % scene.triangles.size()];
+        const float a = unit(rng), b = unit(rng) * (1.0f - a);
+        const glm::vec3 p = (1 - a - b) * scene.positions[tri[0]] + a * scene.positions[tri[1]] +
+                            b * scene.positions[tri[2]];
+        on_surface.push_back({p, direction()});
+    }
+    out.sets.emplace_back("from surfaces", std::move(on_surface));
+
+    std::vector<Ray> axis_parallel;
+    for (int i = 0; i < 2000; ++i) {
+        glm::vec3 d(0.0f);
+        d[i % 3] = (i / 3) % 2 ? 1.0f : -1.0f;
+        if (i % 4 == 0) d[(i + 1) % 3] = -0.0f;
+        axis_parallel.push_back({inside(), d});
+    }
+    out.sets.emplace_back("axis-parallel", std::move(axis_parallel));
+
+    std::vector<Ray> segments;
+    const float scale = glm::length(box.extent());
+    for (int i = 0; i < 2000; ++i)
+        segments.push_back({inside(), direction(), 0.05f * scale * unit(rng),
+                            0.2f * scale * unit(rng) + 0.05f * scale});
+    out.sets.emplace_back("finite tmax", std::move(segments));
+    return out;
+}
+
+/// The naive tracer's answers for every ray set of a scene, computed once.
+struct Reference {
+    RaySets sets;
+    std::vector<std::vector<Hit>> closest, any;
+};
+
+Reference make_reference(const Scene& scene) {
+    Reference ref{make_ray_sets(scene, 42), {}, {}};
+    NaiveTracer naive;
+    naive.set_scene(scene);
+    for (const auto& [name, rays] : ref.sets.sets) {
+        ref.closest.emplace_back(rays.size());
+        ref.any.emplace_back(rays.size());
+        naive.trace(rays, ref.closest.back(), Query::closest);
+        naive.trace(rays, ref.any.back(), Query::any);
+    }
+    return ref;
+}
+
+/// The t at which `ray` hits triangle `prim`, or NaN.
+float reintersect(const Scene& scene, const Ray& ray, std::int32_t prim) {
+    const auto& tri = scene.triangles[std::size_t(prim)];
+    TriangleHit hit;
+    const Triangle corners{scene.positions[tri[0]], scene.positions[tri[1]],
+                           scene.positions[tri[2]]};
+    return intersect_triangle(make_watertight_ray(ray), corners, ray.tmin, ray.tmax, hit) ? hit.t
+                                                                                          : NAN;
+}
+
+void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
+                      const std::string& label) {
+    tracer.set_scene(scene);
+    for (std::size_t set = 0; set < ref.sets.sets.size(); ++set) {
+        const auto& [name, rays] = ref.sets.sets[set];
+        const std::vector<Hit>& expected = ref.closest[set];
+        std::vector<Hit> got(rays.size());
+        tracer.trace(rays, got, Query::closest);
+        std::size_t hits = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            ASSERT_EQ(got[i].hit(), expected[i].hit()) << label << ", " << name << ", ray " << i;
+            if (!expected[i].hit()) continue;
+            ++hits;
+            ASSERT_NEAR(got[i].t, expected[i].t, 1e-6f * std::abs(expected[i].t))
+                << label << ", " << name << ", ray " << i;
+            if (got[i].prim != expected[i].prim) {
+                // A tie (coplanar or duplicated triangles, a shared edge): the other triangle
+                // must really be hit at the distance reported.
+                ASSERT_EQ(reintersect(scene, rays[i], got[i].prim), got[i].t)
+                    << label << ", " << name << ", ray " << i;
+            }
+        }
+        if (name == "camera") {
+            EXPECT_GT(hits, 0u) << label;
+        }
+
+        tracer.trace(rays, got, Query::any);
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            ASSERT_EQ(got[i].hit(), ref.any[set][i].hit())
+                << label << ", any hit, " << name << ", ray " << i;
+    }
+}
+
+const char* const kSceneNames[] = {
+    "builtin:soup:count=2000,seed=1",
+    "builtin:soup:count=3000,seed=2,size=0.3",
+    "builtin:sphere:subdiv=3",
+    "builtin:cornell",
+    "builtin:cube:n=6",
+    "coplanar",
+    "spot.obj",
+};
+
+Scene test_scene(const std::string& name) {
+    if (name == "coplanar") return coplanar_scene();
+    if (name == "spot.obj") return load_obj(test::source_dir() / "assets/spot/spot.obj");
+    return make_builtin_scene(name);
+}
+
+struct Variant {
+    std::string name;
+    EdacrtParams params;
+};
+
+std::vector<Variant> variants() {
+    std::vector<Variant> out = {{"edacrt", EdacrtParams{}}, {"dacrt", EdacrtParams::dacrt()}};
+    const auto add = [&](const std::string& name, auto edit) {
+        EdacrtParams p;
+        edit(p);
+        out.push_back({name, p});
+    };
+    add("K=2", [](EdacrtParams& p) { p.bins = 2; });
+    add("K=64", [](EdacrtParams& p) { p.bins = 64; });
+    add("leaf=1", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1; });
+    add("leaf=1e6 (naive)", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1'000'000; });
+    add("1 sample", [](EdacrtParams& p) {
+        p.sample_count = 1;
+        p.sample_threshold = 1;
+    });
+    add("filter skip off", [](EdacrtParams& p) { p.filter_skip = false; });
+    add("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
+    return out;
+}
+
+class TracerAgreement : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TracerAgreement, EveryVariantMatchesNaive) {
+    const Scene scene = test_scene(GetParam());
+    const Reference reference = make_reference(scene);
+    for (const Variant& variant : variants()) {
+        EdacrtTracer tracer(variant.params);
+        expect_agreement(scene, reference, tracer, std::string(GetParam()) + " / " + variant.name);
+        if (HasFatalFailure()) return;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, TracerAgreement, ::testing::ValuesIn(kSceneNames),
+                         [](const auto& info) {
+                             std::string name;
+                             for (const char c : std::string(info.param))
+                                 name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return name;
+                         });
+
+TEST(EdacrtStats, TestsFewerTrianglesThanNaive) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
+    const RaySets sets = make_ray_sets(scene, 1);
+    const std::vector<Ray>& rays = sets.sets[0].second;
+    std::vector<Hit> hits(rays.size());
+    EdacrtTracer tracer;
+    tracer.set_scene(scene);
+    const TraceStats stats = tracer.trace(rays, hits, Query::closest);
+    EXPECT_EQ(stats.rays, rays.size());
+    EXPECT_GT(stats.ray_box_tests, 0u);
+    EXPECT_LT(stats.ray_triangle_tests, rays.size() * scene.triangle_count() / 20);
+}
+
+TEST(EdacrtParams, OutOfRangeParametersAreRejected) {
+    const auto rejects = [](auto edit) {
+        EdacrtParams p;
+        edit(p);
+        EXPECT_THROW(validate(p), InputError);
+    };
+    rejects([](EdacrtParams& p) { p.bins = 1; });
+    rejects([](EdacrtParams& p) { p.bins = 1000; });
+    rejects([](EdacrtParams& p) { p.leaf_rays = 0; });
+    rejects([](EdacrtParams& p) { p.leaf_tris = 0; });
+    rejects([](EdacrtParams& p) { p.sample_count = 0; });
+    rejects([](EdacrtParams& p) { p.cost_intersect = -1.0f; });
+    rejects([](EdacrtParams& p) { p.cost_traversal = NAN; });
+    EXPECT_NO_THROW(validate(EdacrtParams{}));
+    EXPECT_NO_THROW(validate(EdacrtParams::dacrt()));
+}
+
+}  // namespace
+}  // namespace edacrt

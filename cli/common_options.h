@@ -16,7 +16,7 @@ namespace edacrt::cli {
 
 struct CommonOptions {
     std::string scene;
-    std::string method = "naive";
+    std::string method = "edacrt";
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
 };

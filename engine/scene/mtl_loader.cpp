@@ -73,17 +73,9 @@ class MtlParser {
     /// A whole token as a finite float; same rules as the OBJ parser.
     float number(std::string_view token) const {
         float value = 0.0f;
-        switch (parse_float(token, value)) {
-            case NumberStatus::ok:
-                return value;
-            case NumberStatus::malformed:
-                fail("bad number " + quote(token));
-            case NumberStatus::out_of_range:
-                fail("number " + quote(token) + " is out of range for float");
-            case NumberStatus::non_finite:
-                fail("non-finite number " + quote(token));
-        }
-        fail("bad number " + quote(token));
+        const NumberStatus status = parse_float(token, value);
+        if (status != NumberStatus::ok) fail(describe(status, token));
+        return value;
     }
 
     /// Three numbers, or one for a grey.

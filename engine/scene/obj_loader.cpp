@@ -186,17 +186,9 @@ class ObjParser {
 
     float number(std::string_view token) const {
         float value = 0.0f;
-        switch (parse_float(token, value)) {
-            case NumberStatus::ok:
-                return value;
-            case NumberStatus::malformed:
-                fail("bad number " + quote(token));
-            case NumberStatus::non_finite:
-                fail("non-finite number " + quote(token));
-            case NumberStatus::out_of_range:
-                fail("number " + quote(token) + " is out of range for float");
-        }
-        fail("bad number " + quote(token));
+        const NumberStatus status = parse_float(token, value);
+        if (status != NumberStatus::ok) fail(describe(status, token));
+        return value;
     }
 
     /// Reads `min_count` to `max_count` numbers into `values`; returns how many there were.

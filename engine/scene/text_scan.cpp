@@ -46,4 +46,18 @@ NumberStatus parse_float(std::string_view token, float& value) {
     return std::isfinite(value) ? NumberStatus::ok : NumberStatus::non_finite;
 }
 
+std::string describe(NumberStatus status, std::string_view token) {
+    switch (status) {
+        case NumberStatus::ok:
+            break;
+        case NumberStatus::malformed:
+            return "bad number " + quote(token);
+        case NumberStatus::non_finite:
+            return "non-finite number " + quote(token);
+        case NumberStatus::out_of_range:
+            return "number " + quote(token) + " is out of range for float";
+    }
+    return "number " + quote(token);
+}
+
 }  // namespace edacrt::text_scan

@@ -100,4 +100,7 @@ enum class NumberStatus { ok, malformed, non_finite, out_of_range };
 /// a leading '+' and reports underflow as out of range; both are accepted here.
 NumberStatus parse_float(std::string_view token, float& value);
 
+/// What is wrong with a number that did not parse, for an error message.
+std::string describe(NumberStatus status, std::string_view token);
+
 }  // namespace edacrt::text_scan

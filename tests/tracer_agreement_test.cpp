@@ -65,10 +65,9 @@ RaySets make_ray_sets(const Scene& scene, std::uint32_t seed) {
 
     std::vector<Ray> on_surface;
     for (int i = 0; i < 2000; ++i) {
-        const auto& tri = scene.triangles[rng() % scene.triangles.size()];
+        const Triangle tri = scene.corners(rng() % scene.triangle_count());
         const float a = unit(rng), b = unit(rng) * (1.0f - a);
-        const glm::vec3 p = (1 - a - b) * scene.positions[tri[0]] + a * scene.positions[tri[1]] +
-                            b * scene.positions[tri[2]];
+        const glm::vec3 p = (1 - a - b) * tri.p0 + a * tri.p1 + b * tri.p2;
         on_surface.push_back({p, direction()});
     }
     out.sets.emplace_back("from surfaces", std::move(on_surface));
@@ -112,12 +111,11 @@ Reference make_reference(const Scene& scene) {
 
 /// The t at which `ray` hits triangle `prim`, or NaN.
 float reintersect(const Scene& scene, const Ray& ray, std::int32_t prim) {
-    const auto& tri = scene.triangles[std::size_t(prim)];
     TriangleHit hit;
-    const Triangle corners{scene.positions[tri[0]], scene.positions[tri[1]],
-                           scene.positions[tri[2]]};
-    return intersect_triangle(make_watertight_ray(ray), corners, ray.tmin, ray.tmax, hit) ? hit.t
-                                                                                          : NAN;
+    return intersect_triangle(make_watertight_ray(ray), scene.corners(std::size_t(prim)), ray.tmin,
+                              ray.tmax, hit)
+               ? hit.t
+               : NAN;
 }
 
 void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
@@ -147,9 +145,14 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
         }
 
         tracer.trace(rays, got, Query::any);
-        for (std::size_t i = 0; i < rays.size(); ++i)
+        for (std::size_t i = 0; i < rays.size(); ++i) {
             ASSERT_EQ(got[i].hit(), ref.any[set][i].hit())
                 << label << ", any hit, " << name << ", ray " << i;
+            if (got[i].hit()) {  // the reported occluder really blocks the ray there
+                ASSERT_EQ(reintersect(scene, rays[i], got[i].prim), got[i].t)
+                    << label << ", any hit, " << name << ", ray " << i;
+            }
+        }
     }
 }
 

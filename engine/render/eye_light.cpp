@@ -25,9 +25,7 @@ void validate(const EyeLightSettings& s) {
 /// Lambertian response to a light at the eye, plus the material's emission.
 glm::vec3 shade(const Scene& scene, const Ray& ray, const Hit& hit) {
     if (!hit.hit()) return glm::vec3(0.0f);
-    const auto& [a, b, c] = scene.triangles[std::size_t(hit.prim)];
-    const glm::vec3 normal = glm::normalize(glm::cross(scene.positions[b] - scene.positions[a],
-                                                       scene.positions[c] - scene.positions[a]));
+    const glm::vec3 normal = glm::normalize(geometric_normal(scene.corners(std::size_t(hit.prim))));
     const float cosine = std::abs(glm::dot(normal, ray.dir));
     const Material& material = scene.materials[scene.triangle_materials[std::size_t(hit.prim)]];
     return material.kd * cosine + glm::min(material.ke, glm::vec3(1.0f));

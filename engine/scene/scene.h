@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/aabb.h"
+#include "geometry/triangle.h"
 #include "scene/camera.h"
 #include "scene/material.h"
 
@@ -31,6 +32,10 @@ struct Scene {
     std::vector<std::string> warnings;  // problems that were repaired or skipped
 
     std::size_t triangle_count() const { return triangles.size(); }
+    Triangle corners(std::size_t i) const {
+        const auto& [a, b, c] = triangles[i];
+        return {positions[a], positions[b], positions[c]};
+    }
     Aabb bounds() const {
         Aabb box;
         for (const auto& tri : triangles)

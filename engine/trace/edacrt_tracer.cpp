@@ -40,7 +40,6 @@ struct BinScratch {
     std::vector<Aabb> bin_bounds, left_bounds, right_bounds;
     std::vector<std::size_t> bin_count;
     std::vector<std::uint32_t> left_hits, right_hits, left_first, right_first;
-    std::vector<std::uint32_t> samples;
 
     explicit BinScratch(int bins)
         : bin_bounds(bins),
@@ -57,15 +56,15 @@ template <Query Q>
 class Recursion {
   public:
     Recursion(const EdacrtParams& params, const EdacrtTracer::SceneData& scene,
-              const RayState& rays, BinScratch& scratch, TraceStats& stats)
-        : p_(params), scene_(scene), rays_(rays), scratch_(scratch), stats_(stats) {}
+              const RayState& state, BinScratch& scratch, TraceStats& stats)
+        : p_(params), scene_(scene), state_(state), scratch_(scratch), stats_(stats) {}
 
     /// Keeps (moves to the front) the rays that reach `box` before their current hit.
     std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box) {
         stats_.ray_box_tests += count;
         std::uint32_t* kept = std::partition(rays, rays + count, [&](std::uint32_t r) {
             float entry;
-            return intersect_box(rays_.srays[r], box, rays_.t_far[r], entry);
+            return intersect_box(state_.srays[r], box, state_.t_far[r], entry);
         });
         return std::size_t(kept - rays);
     }
@@ -180,7 +179,7 @@ class Recursion {
         } else {  // DACRT: near child by the majority sign of the rays' direction on the axis
             std::size_t negative = 0;
             for (std::size_t i = 0; i < ray_count; ++i)
-                negative += std::signbit(rays_.rays[rays[i]].dir[axis]);
+                negative += std::signbit(state_.rays[rays[i]].dir[axis]);
             split.left_first = 2 * negative <= ray_count;
         }
         return true;
@@ -206,8 +205,8 @@ class Recursion {
             const std::uint32_t r =
                 subsample ? rays[(std::uint64_t(hash_combine(node_seed, s)) * ray_count) >> 32]
                           : rays[s];
-            const SlabRay& ray = rays_.srays[r];
-            const float t_far = rays_.t_far[r];
+            const SlabRay& ray = state_.srays[r];
+            const float t_far = state_.t_far[r];
             for (int j = 0; j < candidates; ++j) {
                 float left_entry = 0.0f, right_entry = 0.0f;
                 const bool left = intersect_box(ray, scratch_.left_bounds[j], t_far, left_entry);
@@ -221,33 +220,35 @@ class Recursion {
         return sampled;
     }
 
-    /// Brute force: every ray against every triangle of the node.
+    /// Brute force: every ray against every triangle of the node. An any-hit ray that is
+    /// already done (passed down unfiltered) is skipped.
     void leaf(const std::uint32_t* rays, std::size_t ray_count, const std::uint32_t* tris,
               std::size_t tri_count) {
         for (std::size_t i = 0; i < ray_count; ++i) {
             const std::uint32_t r = rays[i];
-            float& t_far = rays_.t_far[r];
-            const float tmin = rays_.rays[r].tmin;
-            const WatertightRay& wray = rays_.wrays[r];
+            float& t_far = state_.t_far[r];
+            if (Q == Query::any && t_far == -kInfinity) continue;
+            const float tmin = state_.rays[r].tmin;
+            const WatertightRay& wray = state_.wrays[r];
             TriangleHit hit;
-            for (std::size_t k = 0; k < tri_count; ++k) {
-                const std::uint32_t t = tris[k];
+            std::size_t k = 0;
+            while (k < tri_count) {
+                const std::uint32_t t = tris[k++];
                 if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit)) continue;
-                rays_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+                state_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
                 if constexpr (Q == Query::any) {
-                    stats_.ray_triangle_tests += k + 1;
                     t_far = -kInfinity;
                     break;
                 }
                 t_far = hit.t;
             }
-            if (Q == Query::closest || t_far != -kInfinity) stats_.ray_triangle_tests += tri_count;
+            stats_.ray_triangle_tests += k;
         }
     }
 
     const EdacrtParams& p_;
     const EdacrtTracer::SceneData& scene_;
-    const RayState& rays_;
+    const RayState& state_;
     BinScratch& scratch_;
     TraceStats& stats_;
 };

@@ -51,8 +51,7 @@ std::vector<std::string> method_names() {
 std::vector<Triangle> gather_triangles(const Scene& scene) {
     std::vector<Triangle> triangles;
     triangles.reserve(scene.triangles.size());
-    for (const auto& [a, b, c] : scene.triangles)
-        triangles.push_back({scene.positions[a], scene.positions[b], scene.positions[c]});
+    for (std::size_t i = 0; i < scene.triangle_count(); ++i) triangles.push_back(scene.corners(i));
     return triangles;
 }
 

@@ -23,6 +23,26 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
         ->capture_default_str();
     command.add_option("--stats", options.stats_path,
                        "write timings and counters to this JSON file");
+
+    // EDACRT (and, where they apply, DACRT) parameters; see engine/trace/edacrt_params.h.
+    EdacrtParams& p = options.edacrt;
+    const auto param = [&](const char* name, auto& value, const char* what) {
+        command.add_option(name, value, what)->capture_default_str()->group("EDACRT parameters");
+    };
+    param("--bins", p.bins, "K, bins per split (K-1 candidate splits)");
+    param("--sample-threshold", p.sample_threshold, "nodes with more rays sample them");
+    param("--sample-count", p.sample_count, "rays sampled per node");
+    param("--leaf-rays", p.leaf_rays, "brute force when rays <= this");
+    param("--leaf-tris", p.leaf_tris, "brute force when triangles <= this");
+    param("--cost-leaf-max-tris", p.cost_leaf_max_tris,
+          "the cost test may make leaves only this small");
+    param("--c-t", p.cost_traversal, "C_T, cost of a split per ray");
+    param("--c-i", p.cost_intersect, "C_I, cost of a ray-triangle test");
+    param("--c-bv", p.cost_filter, "C_bv, cost of filtering a ray");
+    param("--c-child", p.cost_child, "C_child, per-triangle cost of an unfiltered ray");
+    param("--filter-skip", p.filter_skip, "skip filtering when most rays hit the child (0/1)");
+    param("--sampling", p.sampling, "estimate hit ratios by ray sampling (0/1)");
+    param("--sampling-seed", p.seed, "seed of the per-node ray sampling");
 }
 
 std::unique_ptr<tbb::global_control> apply_thread_limit(const CommonOptions& options) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "trace/edacrt_params.h"
 #include "trace/tracer.h"
 
 namespace edacrt::cli {
@@ -19,6 +20,7 @@ struct CommonOptions {
     std::string method = "edacrt";
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
+    EdacrtParams edacrt;
 };
 
 void add_common_options(CLI::App& command, CommonOptions& options);

@@ -36,11 +36,11 @@ Camera choose_camera(const Scene& scene, const RenderOptions& o) {
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     const Method method = parse_method(o.common.method);
+    const auto tracer = make_tracer(method, o.common.edacrt);  // rejects bad parameters early
     const Scene scene = load_scene_verbose(o.common.scene);
     const Camera camera = choose_camera(scene, o);
 
     auto start = std::chrono::steady_clock::now();
-    const auto tracer = make_tracer(method);
     tracer->set_scene(scene);
     const double prepare_seconds = seconds_since(start);
 

@@ -20,11 +20,11 @@ struct TraceOptions {
 void run(const TraceOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     const Method method = parse_method(o.common.method);
+    const auto tracer = make_tracer(method, o.common.edacrt);  // rejects bad parameters early
     const std::vector<Ray> rays = read_rays(o.rays_path);
     const Scene scene = load_scene_verbose(o.common.scene);
 
     auto start = std::chrono::steady_clock::now();
-    const auto tracer = make_tracer(method);
     tracer->set_scene(scene);
     const double prepare_seconds = seconds_since(start);
 

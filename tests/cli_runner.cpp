@@ -10,7 +10,9 @@
 namespace edacrt::test {
 
 CliResult run_cli(const std::string& args) {
-    const std::string command = "'" + cli_path().string() + "' " + args + " 2>&1";
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
+    std::string command = "'";
+    command.append(cli_path().string()).append("' ").append(args).append(" 2>&1");
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return {-1, "popen failed"};
     std::string output;

@@ -178,7 +178,7 @@ struct Variant {
 };
 
 std::vector<Variant> variants() {
-    std::vector<Variant> out = {{"edacrt", EdacrtParams{}}, {"dacrt", EdacrtParams::dacrt()}};
+    std::vector<Variant> out = {{"edacrt", EdacrtParams{}}, {"dacrt", dacrt_params()}};
     const auto add = [&](const std::string& name, auto edit) {
         EdacrtParams p;
         edit(p);
@@ -193,6 +193,7 @@ std::vector<Variant> variants() {
         p.sample_threshold = 1;
     });
     add("filter skip off", [](EdacrtParams& p) { p.filter_skip = false; });
+    add("leaf by cost anywhere", [](EdacrtParams& p) { p.cost_leaf_max_tris = 1'000'000; });
     add("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
     return out;
 }
@@ -244,7 +245,7 @@ TEST(EdacrtParams, OutOfRangeParametersAreRejected) {
     rejects([](EdacrtParams& p) { p.cost_intersect = -1.0f; });
     rejects([](EdacrtParams& p) { p.cost_traversal = NAN; });
     EXPECT_NO_THROW(validate(EdacrtParams{}));
-    EXPECT_NO_THROW(validate(EdacrtParams::dacrt()));
+    EXPECT_NO_THROW(validate(dacrt_params()));
 }
 
 }  // namespace

@@ -12,22 +12,25 @@ struct EdacrtParams {
     std::uint32_t sample_count = 100;       // ...drawing this many; smaller nodes use all rays
     std::uint32_t leaf_rays = 16;           // brute force when rays <= leaf_rays...
     std::uint32_t leaf_tris = 16;           // ...or triangles <= leaf_tris
-    float cost_traversal = 2.0f;            // C_T: per-ray cost of a split (two box tests)
-    float cost_intersect = 1.0f;            // C_I: one ray-triangle test
-    float cost_filter = 1.0f;               // C_bv: filtering one ray against a child box
-    float cost_child = 1.0f;                // C_child: per-triangle cost of an unfiltered ray
-    bool filter_skip = true;                // skip filtering when alpha > 1 - C_bv/(n C_child)
-    bool sampling = true;                   // off: DACRT's surface-area ratios
-    std::uint32_t seed = 1;                 // of the per-node ray sampling
-
-    /// Parameters of the DACRT baseline.
-    static EdacrtParams dacrt() {
-        EdacrtParams params;
-        params.sampling = false;
-        params.filter_skip = false;
-        return params;
-    }
+    // The cost test may end the recursion only in nodes with at most this many triangles: it
+    // prices both children as leaves, so when the rays start inside overlapping child boxes
+    // (alpha ~ 1 for both) it would otherwise make leaves of the whole scene.
+    std::uint32_t cost_leaf_max_tris = 64;
+    float cost_traversal = 2.0f;  // C_T: per-ray cost of a split (two box tests)
+    float cost_intersect = 1.0f;  // C_I: one ray-triangle test
+    float cost_filter = 1.0f;     // C_bv: filtering one ray against a child box
+    float cost_child = 1.0f;      // C_child: per-triangle cost of an unfiltered ray
+    bool filter_skip = true;      // skip filtering when alpha > 1 - C_bv/(n C_child)
+    bool sampling = true;         // off: DACRT's surface-area ratios
+    std::uint32_t seed = 1;       // of the per-node ray sampling
 };
+
+/// Parameters of the DACRT baseline: `params` with sampling and filter skipping off.
+inline EdacrtParams dacrt_params(EdacrtParams params = {}) {
+    params.sampling = false;
+    params.filter_skip = false;
+    return params;
+}
 
 /// Throws InputError naming the first parameter out of range.
 void validate(const EdacrtParams& params);

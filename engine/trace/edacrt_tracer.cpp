@@ -104,7 +104,8 @@ class Recursion {
     }
 
     /// Binning (Section 3.1, after Wald 2007), ray sampling and the cost model (Section 3.2),
-    /// and the traversal order (Section 3.3). Returns false when no split beats a leaf.
+    /// and the traversal order (Section 3.3). Returns false when no split beats a leaf or
+    /// none separates the triangles.
     bool choose_split(const Aabb& box, const std::uint32_t* rays, std::size_t ray_count,
                       const std::uint32_t* tris, std::size_t tri_count, int depth, Split& split) {
         const int K = p_.bins;
@@ -141,7 +142,10 @@ class Recursion {
 
         const std::uint32_t sampled = estimate_hit_ratios(rays, ray_count, depth);
         const float box_area = box.surface_area();
-        float best_cost = p_.cost_intersect * float(tri_count);  // the leaf's cost per ray
+        // A split must beat the leaf's cost per ray, except in large nodes (see
+        // EdacrtParams::cost_leaf_max_tris), where the cheapest split is taken.
+        float best_cost =
+            tri_count <= p_.cost_leaf_max_tris ? p_.cost_intersect * float(tri_count) : kInfinity;
         int best = -1;
         std::size_t left_count = 0;
         for (int j = 0; j < K - 1; ++j) {

@@ -9,7 +9,7 @@
 namespace edacrt {
 
 /// Divide-and-conquer ray tracing without a stored structure: EDACRT (Nabata et al. 2013), or
-/// with EdacrtParams::dacrt() the DACRT baseline (Afra 2012). Each batch recursively splits its
+/// with dacrt_params() the DACRT baseline (Afra 2012). Each batch recursively splits its
 /// rays and triangles, partitioning index arrays in place (no allocation per node).
 class EdacrtTracer final : public Tracer {
   public:

@@ -10,14 +10,14 @@ namespace {
 constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::naive};
 }
 
-std::unique_ptr<Tracer> make_tracer(Method method) {
+std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
     switch (method) {
         case Method::naive:
             return std::make_unique<NaiveTracer>();
         case Method::edacrt:
-            return std::make_unique<EdacrtTracer>(EdacrtParams{}, Method::edacrt);
+            return std::make_unique<EdacrtTracer>(params, Method::edacrt);
         case Method::dacrt:
-            return std::make_unique<EdacrtTracer>(EdacrtParams::dacrt(), Method::dacrt);
+            return std::make_unique<EdacrtTracer>(dacrt_params(params), Method::dacrt);
     }
     throw InputError("unknown tracing method");
 }

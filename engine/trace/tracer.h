@@ -9,6 +9,7 @@
 #include "geometry/ray.h"
 #include "geometry/triangle.h"
 #include "scene/scene.h"
+#include "trace/edacrt_params.h"
 
 namespace edacrt {
 
@@ -50,7 +51,9 @@ class Tracer {
     virtual TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) = 0;
 };
 
-std::unique_ptr<Tracer> make_tracer(Method method);
+/// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt with
+/// sampling and filter skipping off); the others ignore it. Throws InputError for bad params.
+std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {});
 
 std::string_view method_name(Method method);
 

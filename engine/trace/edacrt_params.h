@@ -7,7 +7,7 @@ namespace edacrt {
 /// same recursion is object-partitioning DACRT (Afra 2012): surface-area ratios instead of
 /// sampled hit ratios, rays always filtered, near child chosen by the rays' direction sign.
 struct EdacrtParams {
-    int bins = 16;                          // K: candidate splits per node are K - 1 (Wald 2007)
+    int bins = 8;  // K: K - 1 candidate splits per node (Wald 2007); 8 measured faster than 16
     std::uint32_t sample_threshold = 1000;  // nodes with more rays than this sample them...
     std::uint32_t sample_count = 100;       // ...drawing this many; smaller nodes use all rays
     std::uint32_t leaf_rays = 16;           // brute force when rays <= leaf_rays...

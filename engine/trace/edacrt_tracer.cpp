@@ -140,7 +140,7 @@ class Recursion {
             scratch_.right_bounds[j] = sweep;
         }
 
-        const std::uint32_t sampled = estimate_hit_ratios(rays, ray_count, depth);
+        const std::uint32_t sampled = estimate_hit_ratios(rays, ray_count, axis, depth);
         const float box_area = box.surface_area();
         // A split must beat the leaf's cost per ray, except in large nodes (see
         // EdacrtParams::cost_leaf_max_tris), where the cheapest split is taken.
@@ -190,8 +190,11 @@ class Recursion {
     }
 
     /// Ray sampling (Section 3.2): for every candidate, how many of the sampled rays hit each
-    /// child box, and which child each ray enters first. Returns the number of samples.
-    std::uint32_t estimate_hit_ratios(const std::uint32_t* rays, std::size_t ray_count, int depth) {
+    /// child box, and which child each ray enters first. A ray that starts inside both boxes
+    /// enters them at the same distance; it counts for the child on the side it comes from
+    /// along the split axis. Returns the number of samples.
+    std::uint32_t estimate_hit_ratios(const std::uint32_t* rays, std::size_t ray_count, int axis,
+                                      int depth) {
         if (!p_.sampling) return 0;
         const int candidates = p_.bins - 1;
         std::fill_n(scratch_.left_hits.begin(), candidates, 0);
@@ -211,14 +214,17 @@ class Recursion {
                           : rays[s];
             const SlabRay& ray = state_.srays[r];
             const float t_far = state_.t_far[r];
+            const bool left_on_tie = !std::signbit(ray.inv_dir[axis]);
             for (int j = 0; j < candidates; ++j) {
                 float left_entry = 0.0f, right_entry = 0.0f;
                 const bool left = intersect_box(ray, scratch_.left_bounds[j], t_far, left_entry);
                 const bool right = intersect_box(ray, scratch_.right_bounds[j], t_far, right_entry);
                 scratch_.left_hits[j] += left;
                 scratch_.right_hits[j] += right;
-                scratch_.left_first[j] += left && (!right || left_entry <= right_entry);
-                scratch_.right_first[j] += right && (!left || right_entry < left_entry);
+                const bool left_nearer =
+                    left_entry < right_entry || (left_entry == right_entry && left_on_tie);
+                scratch_.left_first[j] += left && (!right || left_nearer);
+                scratch_.right_first[j] += right && (!left || !left_nearer);
             }
         }
         return sampled;

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <functional>
 #include <random>
 
 #include "scene/builtin_scenes.h"
 #include "scene/obj_loader.h"
 #include "test_paths.h"
+#include "trace/bvh_tracer.h"
 #include "trace/edacrt_tracer.h"
 #include "trace/naive_tracer.h"
 #include "util/error.h"
@@ -172,29 +174,34 @@ Scene test_scene(const std::string& name) {
     return make_builtin_scene(name);
 }
 
+/// A tracer configuration under test.
 struct Variant {
     std::string name;
-    EdacrtParams params;
+    std::function<std::unique_ptr<Tracer>()> make;
 };
 
 std::vector<Variant> variants() {
-    std::vector<Variant> out = {{"edacrt", EdacrtParams{}}, {"dacrt", dacrt_params()}};
-    const auto add = [&](const std::string& name, auto edit) {
+    std::vector<Variant> out = {
+        {"bvh", [] { return make_tracer(Method::bvh); }},
+        {"dacrt", [] { return make_tracer(Method::dacrt); }},
+    };
+    const auto edacrt = [&](const std::string& name, auto edit) {
         EdacrtParams p;
         edit(p);
-        out.push_back({name, p});
+        out.push_back({name, [p] { return std::make_unique<EdacrtTracer>(p); }});
     };
-    add("K=2", [](EdacrtParams& p) { p.bins = 2; });
-    add("K=64", [](EdacrtParams& p) { p.bins = 64; });
-    add("leaf=1", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1; });
-    add("leaf=1e6 (naive)", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1'000'000; });
-    add("1 sample", [](EdacrtParams& p) {
+    edacrt("edacrt", [](EdacrtParams&) {});
+    edacrt("K=2", [](EdacrtParams& p) { p.bins = 2; });
+    edacrt("K=64", [](EdacrtParams& p) { p.bins = 64; });
+    edacrt("leaf=1", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1; });
+    edacrt("leaf=1e6 (naive)", [](EdacrtParams& p) { p.leaf_rays = p.leaf_tris = 1'000'000; });
+    edacrt("1 sample", [](EdacrtParams& p) {
         p.sample_count = 1;
         p.sample_threshold = 1;
     });
-    add("filter skip off", [](EdacrtParams& p) { p.filter_skip = false; });
-    add("leaf by cost anywhere", [](EdacrtParams& p) { p.cost_leaf_max_tris = 1'000'000; });
-    add("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
+    edacrt("filter skip off", [](EdacrtParams& p) { p.filter_skip = false; });
+    edacrt("leaf by cost anywhere", [](EdacrtParams& p) { p.cost_leaf_max_tris = 1'000'000; });
+    edacrt("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
     return out;
 }
 
@@ -204,8 +211,8 @@ TEST_P(TracerAgreement, EveryVariantMatchesNaive) {
     const Scene scene = test_scene(GetParam());
     const Reference reference = make_reference(scene);
     for (const Variant& variant : variants()) {
-        EdacrtTracer tracer(variant.params);
-        expect_agreement(scene, reference, tracer, std::string(GetParam()) + " / " + variant.name);
+        const auto tracer = variant.make();
+        expect_agreement(scene, reference, *tracer, std::string(GetParam()) + " / " + variant.name);
         if (HasFatalFailure()) return;
     }
 }
@@ -231,6 +238,29 @@ TEST(EdacrtStats, TestsFewerTrianglesThanNaive) {
     EXPECT_LT(stats.ray_triangle_tests, rays.size() * scene.triangle_count() / 20);
 }
 
+TEST(Bvh, EveryTriangleIsInOneLeafAndChildrenNestInParents) {
+    const Scene scene = make_builtin_scene("builtin:soup:count=3000,seed=3");
+    BvhTracer bvh;
+    bvh.set_scene(scene);
+    const auto& nodes = bvh.nodes();
+    std::size_t in_leaves = 0, leaves = 0;
+    for (const BvhTracer::Node& node : nodes) {
+        if (node.count > 0) {
+            in_leaves += node.count;
+            ++leaves;
+            continue;
+        }
+        ASSERT_LT(node.first + 1, nodes.size());
+        for (const std::uint32_t child : {node.first, node.first + 1}) {
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(node.box.lo, nodes[child].box.lo)));
+            EXPECT_TRUE(glm::all(glm::greaterThanEqual(node.box.hi, nodes[child].box.hi)));
+        }
+    }
+    EXPECT_EQ(in_leaves, scene.triangle_count());
+    EXPECT_EQ(nodes.size(), 2 * leaves - 1);
+    EXPECT_GT(leaves, scene.triangle_count() / 8);  // a real hierarchy, not one big leaf
+}
+
 TEST(EdacrtParams, OutOfRangeParametersAreRejected) {
     const auto rejects = [](auto edit) {
         EdacrtParams p;
@@ -246,6 +276,7 @@ TEST(EdacrtParams, OutOfRangeParametersAreRejected) {
     rejects([](EdacrtParams& p) { p.cost_traversal = NAN; });
     EXPECT_NO_THROW(validate(EdacrtParams{}));
     EXPECT_NO_THROW(validate(dacrt_params()));
+    EXPECT_THROW(make_tracer(Method::edacrt, EdacrtParams{.bins = 0}), InputError);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "trace/tracer.h"
 
+#include "trace/bvh_tracer.h"
 #include "trace/edacrt_tracer.h"
 #include "trace/naive_tracer.h"
 #include "util/error.h"
@@ -7,13 +8,15 @@
 namespace edacrt {
 
 namespace {
-constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::naive};
+constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::naive};
 }
 
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
     switch (method) {
         case Method::naive:
             return std::make_unique<NaiveTracer>();
+        case Method::bvh:
+            return std::make_unique<BvhTracer>();
         case Method::edacrt:
             return std::make_unique<EdacrtTracer>(params, Method::edacrt);
         case Method::dacrt:
@@ -26,6 +29,8 @@ std::string_view method_name(Method method) {
     switch (method) {
         case Method::naive:
             return "naive";
+        case Method::bvh:
+            return "bvh";
         case Method::edacrt:
             return "edacrt";
         case Method::dacrt:

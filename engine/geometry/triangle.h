@@ -110,6 +110,10 @@ inline Aabb conservative_bounds(const Triangle& tri) {
     return box;
 }
 
+inline glm::vec3 centroid(const Triangle& tri) {
+    return (tri.p0 + tri.p1 + tri.p2) * (1.0f / 3.0f);
+}
+
 /// The unnormalised geometric normal, oriented by the winding p0 -> p1 -> p2.
 inline glm::vec3 geometric_normal(const Triangle& tri) {
     return glm::cross(tri.p1 - tri.p0, tri.p2 - tri.p0);

@@ -101,7 +101,7 @@ void BvhTracer::set_scene(const Scene& scene) {
     std::vector<glm::vec3> centroids(triangles_.size());
     for (std::size_t i = 0; i < triangles_.size(); ++i) {
         bounds[i] = conservative_bounds(triangles_[i]);
-        centroids[i] = (triangles_[i].p0 + triangles_[i].p1 + triangles_[i].p2) * (1.0f / 3.0f);
+        centroids[i] = centroid(triangles_[i]);
     }
     nodes_.clear();
     prims_.clear();

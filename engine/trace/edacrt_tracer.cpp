@@ -282,7 +282,7 @@ void EdacrtTracer::set_scene(const Scene& scene) {
     for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
         const Triangle& tri = scene_.triangles[i];
         const Aabb& bounds = scene_.bounds[i] = conservative_bounds(tri);
-        scene_.centroids[i] = (tri.p0 + tri.p1 + tri.p2) * (1.0f / 3.0f);
+        scene_.centroids[i] = centroid(tri);
         scene_.box.extend(bounds);
     }
 }

@@ -113,18 +113,21 @@ void BvhTracer::set_scene(const Scene& scene) {
     Builder(bounds, centroids, prims_, nodes_).build(0, 0, std::uint32_t(prims_.size()), 0);
 }
 
-TraceStats BvhTracer::trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) {
+TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                                  TraceDetail* detail) {
     assert(rays.size() == hits.size());
     if (nodes_.empty()) {  // no triangles
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};
     }
-    return query == Query::closest ? trace_all<Query::closest>(rays, hits)
-                                   : trace_all<Query::any>(rays, hits);
+    RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
+    return query == Query::closest ? trace_all<Query::closest>(rays, hits, ray_stats)
+                                   : trace_all<Query::any>(rays, hits, ray_stats);
 }
 
 template <Query Q>
-TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits) const {
+TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
+                                RayStats* ray_stats) const {
     const auto trace_range = [&](const tbb::blocked_range<std::size_t>& range, TraceStats stats) {
         struct Entry {
             std::uint32_t node;
@@ -138,7 +141,7 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits) 
             Hit& hit = hits[i] = Hit{};
             float t_far = ray.tmax;
             int top = 0;
-            ++stats.ray_box_tests;
+            std::uint32_t box_tests = 1, triangle_tests = 0;
             if (float t_entry; intersect_box(sray, nodes_[0].box, t_far, t_entry))
                 stack[top++] = {0, t_entry};
             while (top > 0) {
@@ -147,7 +150,7 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits) 
                 const Node& node = nodes_[index];
                 if (node.count == 0) {  // inner: the nearer child goes on top
                     float t_left = 0.0f, t_right = 0.0f;
-                    stats.ray_box_tests += 2;
+                    box_tests += 2;
                     const bool left = intersect_box(sray, nodes_[node.first].box, t_far, t_left);
                     const bool right =
                         intersect_box(sray, nodes_[node.first + 1].box, t_far, t_right);
@@ -164,7 +167,7 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits) 
                 }
                 TriangleHit candidate;
                 for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-                    ++stats.ray_triangle_tests;
+                    ++triangle_tests;
                     const std::uint32_t prim = prims_[k];
                     if (!intersect_triangle(wray, triangles_[prim], ray.tmin, t_far, candidate))
                         continue;
@@ -176,6 +179,9 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits) 
                     }
                 }
             }
+            stats.ray_box_tests += box_tests;
+            stats.ray_triangle_tests += triangle_tests;
+            if (ray_stats) ray_stats[i] = {box_tests, triangle_tests, 0, 0};
         }
         return stats;
     };

@@ -14,7 +14,6 @@ class BvhTracer final : public Tracer {
   public:
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
-    TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) override;
 
     /// A node is a leaf when count > 0 (triangles prims[first, first + count)); otherwise its
     /// children are nodes first and first + 1.
@@ -25,9 +24,13 @@ class BvhTracer final : public Tracer {
     };
     const std::vector<Node>& nodes() const { return nodes_; }
 
+  protected:
+    TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                           TraceDetail* detail) override;
+
   private:
     template <Query Q>
-    TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits) const;
+    TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
 
     std::vector<Triangle> triangles_;
     std::vector<std::uint32_t> prims_;  // triangle numbers, grouped by leaf

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 
 #include "geometry/ray_box.h"
 #include "util/hash_random.h"
@@ -22,7 +23,20 @@ struct RayState {
     float* t_far;  // the current search distance: closest hit so far; -inf once an any-hit ray
                    // is done, which removes it from every later filter and leaf
     Hit* hits;
+    // Statistics only (null otherwise):
+    RayStats* ray_stats;
+    std::uint64_t* hit_path;   // at the ray's hit: bit d set = second-visited child at depth d
+    std::uint16_t* hit_depth;  // depth of the leaf that produced the hit
 };
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Paths record the first 64 levels; order statistics cover those.
+constexpr int kPathLevels = 64;
 
 /// The chosen split of one node.
 struct Split {
@@ -52,16 +66,29 @@ struct BinScratch {
           right_first(bins) {}
 };
 
-template <Query Q>
+/// The recursion over one sub-batch. With kStats it also fills per-level statistics (in
+/// `levels`) and per-ray ones (through RayState); without, that code is compiled out.
+template <Query Q, bool kStats>
 class Recursion {
   public:
     Recursion(const EdacrtParams& params, const EdacrtTracer::SceneData& scene,
-              const RayState& state, BinScratch& scratch, TraceStats& stats)
-        : p_(params), scene_(scene), state_(state), scratch_(scratch), stats_(stats) {}
+              const RayState& state, BinScratch& scratch, TraceStats& stats,
+              std::vector<LevelStats>& levels)
+        : p_(params),
+          scene_(scene),
+          state_(state),
+          scratch_(scratch),
+          stats_(stats),
+          levels_(levels) {}
 
-    /// Keeps (moves to the front) the rays that reach `box` before their current hit.
-    std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box) {
+    /// Keeps (moves to the front) the rays that reach `box` before their current hit; the
+    /// tests count for level `depth`.
+    std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box, int depth) {
         stats_.ray_box_tests += count;
+        if constexpr (kStats) {
+            level(depth).ray_box_tests += count;
+            for (std::size_t i = 0; i < count; ++i) ++state_.ray_stats[rays[i]].ray_box_tests;
+        }
         std::uint32_t* kept = std::partition(rays, rays + count, [&](std::uint32_t r) {
             float entry;
             return intersect_box(state_.srays[r], box, state_.t_far[r], entry);
@@ -69,13 +96,30 @@ class Recursion {
         return std::size_t(kept - rays);
     }
 
+    /// `path` has bit d set where, at depth d, this node is the child visited second.
     void run(const Aabb& box, std::uint32_t* rays, std::size_t ray_count, std::uint32_t* tris,
-             std::size_t tri_count, int depth) {
+             std::size_t tri_count, int depth, std::uint64_t path) {
         if (ray_count == 0) return;
+        [[maybe_unused]] Clock::time_point start;
+        if constexpr (kStats) {
+            start = Clock::now();
+            LevelStats& stats = level(depth);
+            ++stats.nodes;
+            stats.rays_in += ray_count;
+            stats.triangles += tri_count;
+            for (std::size_t i = 0; i < ray_count; ++i) {
+                std::uint16_t& deepest = state_.ray_stats[rays[i]].deepest_level;
+                deepest = std::max(deepest, std::uint16_t(std::min(depth, 65535)));
+            }
+        }
         Split split;
         if (ray_count <= p_.leaf_rays || tri_count <= p_.leaf_tris ||
             !choose_split(box, rays, ray_count, tris, tri_count, depth, split)) {
-            leaf(rays, ray_count, tris, tri_count);
+            leaf(rays, ray_count, tris, tri_count, depth, path);
+            if constexpr (kStats) {
+                ++level(depth).leaves;
+                level(depth).seconds += seconds_since(start);
+            }
             return;
         }
         // Partition the triangles by the chosen bin boundary (Section 3.1).
@@ -86,18 +130,35 @@ class Recursion {
         std::uint32_t* child_tris[2] = {tris, middle};
 
         // Near child first (Section 3.3), filtering unless it is not worth it (Section 3.4).
-        for (const int side : {split.left_first ? 0 : 1, split.left_first ? 1 : 0}) {
+        for (const int visit : {0, 1}) {
+            const int side = split.left_first == (visit == 0) ? 0 : 1;
             const std::size_t n = split.count[side];
             const bool skip_filter =
                 p_.filter_skip &&
                 split.alpha[side] > 1.0f - p_.cost_filter / (float(n) * p_.cost_child);
             const std::size_t passed =
-                skip_filter ? ray_count : filter(rays, ray_count, split.box[side]);
-            run(split.box[side], rays, passed, child_tris[side], n, depth + 1);
+                skip_filter ? ray_count : filter(rays, ray_count, split.box[side], depth);
+            const std::uint64_t child_path =
+                visit == 1 && depth < kPathLevels ? path | (std::uint64_t(1) << depth) : path;
+            if constexpr (kStats) {
+                LevelStats& stats = level(depth);
+                stats.rays_passed += passed;
+                ++(skip_filter ? stats.filters_skipped : stats.filters_done);
+                stats.seconds += seconds_since(start);
+            }
+            run(split.box[side], rays, passed, child_tris[side], n, depth + 1, child_path);
+            if constexpr (kStats) start = Clock::now();
         }
+        if constexpr (kStats) level(depth).seconds += seconds_since(start);
     }
 
   private:
+    /// The statistics of level `depth` (a reference valid until the next call).
+    LevelStats& level(int depth) {
+        if (levels_.size() <= std::size_t(depth)) levels_.resize(std::size_t(depth) + 1);
+        return levels_[std::size_t(depth)];
+    }
+
     int bin_of(const Split& split, const glm::vec3& centroid) const {
         const int bin = int((centroid[split.axis] - split.bin_origin) * split.bin_scale);
         return std::clamp(bin, 0, p_.bins - 1);
@@ -141,6 +202,7 @@ class Recursion {
         }
 
         const std::uint32_t sampled = estimate_hit_ratios(rays, ray_count, axis, depth);
+        if constexpr (kStats) level(depth).candidate_splits += std::uint64_t(K - 1);
         const float box_area = box.surface_area();
         // A split must beat the leaf's cost per ray, except in large nodes (see
         // EdacrtParams::cost_leaf_max_tris), where the cheapest split is taken.
@@ -207,11 +269,17 @@ class Recursion {
         const std::uint32_t sampled = subsample ? p_.sample_count : std::uint32_t(ray_count);
         const std::uint32_t node_seed =
             hash_combine(hash_combine(p_.seed, std::uint32_t(depth)), std::uint32_t(ray_count));
-        stats_.ray_box_tests += std::uint64_t(sampled) * 2 * std::uint64_t(candidates);
+        const std::uint64_t tests_per_sample = 2 * std::uint64_t(candidates);
+        stats_.ray_box_tests += sampled * tests_per_sample;
+        if constexpr (kStats) {
+            level(depth).sampled_rays += sampled;
+            level(depth).ray_box_tests += sampled * tests_per_sample;
+        }
         for (std::uint32_t s = 0; s < sampled; ++s) {
             const std::uint32_t r =
                 subsample ? rays[(std::uint64_t(hash_combine(node_seed, s)) * ray_count) >> 32]
                           : rays[s];
+            if constexpr (kStats) state_.ray_stats[r].ray_box_tests += tests_per_sample;
             const SlabRay& ray = state_.srays[r];
             const float t_far = state_.t_far[r];
             const bool left_on_tie = !std::signbit(ray.inv_dir[axis]);
@@ -233,7 +301,8 @@ class Recursion {
     /// Brute force: every ray against every triangle of the node. An any-hit ray that is
     /// already done (passed down unfiltered) is skipped.
     void leaf(const std::uint32_t* rays, std::size_t ray_count, const std::uint32_t* tris,
-              std::size_t tri_count) {
+              std::size_t tri_count, [[maybe_unused]] int depth,
+              [[maybe_unused]] std::uint64_t path) {
         for (std::size_t i = 0; i < ray_count; ++i) {
             const std::uint32_t r = rays[i];
             float& t_far = state_.t_far[r];
@@ -246,6 +315,10 @@ class Recursion {
                 const std::uint32_t t = tris[k++];
                 if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit)) continue;
                 state_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+                if constexpr (kStats) {
+                    state_.hit_path[r] = path;
+                    state_.hit_depth[r] = std::uint16_t(std::min(depth, kPathLevels));
+                }
                 if constexpr (Q == Query::any) {
                     t_far = -kInfinity;
                     break;
@@ -253,6 +326,10 @@ class Recursion {
                 t_far = hit.t;
             }
             stats_.ray_triangle_tests += k;
+            if constexpr (kStats) {
+                level(depth).ray_triangle_tests += k;
+                state_.ray_stats[r].ray_triangle_tests += std::uint32_t(k);
+            }
         }
     }
 
@@ -261,7 +338,24 @@ class Recursion {
     const RayState& state_;
     BinScratch& scratch_;
     TraceStats& stats_;
+    std::vector<LevelStats>& levels_;
 };
+
+/// Order statistics from each ray's final hit path: at every level above the leaf that
+/// produced the hit, was the hit in the child visited first?
+void count_order(std::span<const Hit> hits, const std::uint64_t* hit_path,
+                 const std::uint16_t* hit_depth, TraceDetail& detail) {
+    for (std::size_t r = 0; r < hits.size(); ++r) {
+        if (!hits[r].hit()) continue;
+        const int levels = hit_depth[r];
+        for (int d = 0; d < levels; ++d) {
+            const bool second = (hit_path[r] >> d) & 1;
+            ++(second ? detail.levels[std::size_t(d)].order_misses
+                      : detail.levels[std::size_t(d)].order_hits);
+            detail.rays[r].order_misses += second;
+        }
+    }
+}
 
 }  // namespace
 
@@ -287,14 +381,19 @@ void EdacrtTracer::set_scene(const Scene& scene) {
     }
 }
 
-TraceStats EdacrtTracer::trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) {
+TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                                     TraceDetail* detail) {
     assert(rays.size() == hits.size());
-    return query == Query::closest ? trace_batch<Query::closest>(rays, hits)
-                                   : trace_batch<Query::any>(rays, hits);
+    if (query == Query::closest)
+        return detail ? trace_with<Query::closest, true>(rays, hits, detail)
+                      : trace_with<Query::closest, false>(rays, hits, detail);
+    return detail ? trace_with<Query::any, true>(rays, hits, detail)
+                  : trace_with<Query::any, false>(rays, hits, detail);
 }
 
-template <Query Q>
-TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits) {
+template <Query Q, bool kStats>
+TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hits,
+                                    TraceDetail* detail) {
     const std::size_t n = rays.size();
     batch_.wrays.resize(n);
     batch_.srays.resize(n);
@@ -309,8 +408,12 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
             hits[i] = Hit{};
         }
     });
-    const RayState state{rays.data(), batch_.wrays.data(), batch_.srays.data(), batch_.t_far.data(),
-                         hits.data()};
+    std::vector<std::uint64_t> hit_path(kStats ? n : 0);
+    std::vector<std::uint16_t> hit_depth(kStats ? n : 0);
+    const RayState state{rays.data(),         batch_.wrays.data(),
+                         batch_.srays.data(), batch_.t_far.data(),
+                         hits.data(),         kStats ? detail->rays.data() : nullptr,
+                         hit_path.data(),     hit_depth.data()};
 
     // Independent sub-batches of consecutive rays (coherent for camera rays) run in parallel,
     // each with its own triangle index array and scratch.
@@ -318,9 +421,10 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
         std::vector<std::uint32_t> tris;
         BinScratch scratch;
         TraceStats stats;
+        std::vector<LevelStats> levels;
     };
     tbb::enumerable_thread_specific<Worker> workers([&] {
-        return Worker{{}, BinScratch(params_.bins), {}};
+        return Worker{{}, BinScratch(params_.bins), {}, {}};
     });
     const std::size_t chunk_count = std::clamp<std::size_t>(
         n / 8192, 1, 4 * std::size_t(tbb::this_task_arena::max_concurrency()));
@@ -328,11 +432,12 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
         Worker& worker = workers.local();
         worker.tris.resize(scene_.triangles.size());
         for (std::size_t i = 0; i < worker.tris.size(); ++i) worker.tris[i] = std::uint32_t(i);
-        Recursion<Q> recursion(params_, scene_, state, worker.scratch, worker.stats);
+        Recursion<Q, kStats> recursion(params_, scene_, state, worker.scratch, worker.stats,
+                                       worker.levels);
         std::uint32_t* ids = batch_.ids.data() + n * chunk / chunk_count;
         const std::size_t count = n * (chunk + 1) / chunk_count - n * chunk / chunk_count;
-        const std::size_t inside = recursion.filter(ids, count, scene_.box);
-        recursion.run(scene_.box, ids, inside, worker.tris.data(), worker.tris.size(), 0);
+        const std::size_t inside = recursion.filter(ids, count, scene_.box, 0);
+        recursion.run(scene_.box, ids, inside, worker.tris.data(), worker.tris.size(), 0, 0);
     });
 
     TraceStats stats;
@@ -340,7 +445,14 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
     for (const Worker& worker : workers) {
         stats.ray_box_tests += worker.stats.ray_box_tests;
         stats.ray_triangle_tests += worker.stats.ray_triangle_tests;
+        if constexpr (kStats) {
+            if (detail->levels.size() < worker.levels.size())
+                detail->levels.resize(worker.levels.size());
+            for (std::size_t d = 0; d < worker.levels.size(); ++d)
+                detail->levels[d] += worker.levels[d];
+        }
     }
+    if constexpr (kStats) count_order(hits, hit_path.data(), hit_depth.data(), *detail);
     return stats;
 }
 

@@ -17,7 +17,6 @@ class EdacrtTracer final : public Tracer {
 
     Method method() const override { return method_; }
     void set_scene(const Scene& scene) override;
-    TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) override;
 
     const EdacrtParams& params() const { return params_; }
     /// Throws InputError for parameters out of range (see validate()).
@@ -39,9 +38,13 @@ class EdacrtTracer final : public Tracer {
         std::vector<std::uint32_t> ids;
     };
 
+  protected:
+    TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                           TraceDetail* detail) override;
+
   private:
-    template <Query Q>
-    TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits);
+    template <Query Q, bool kStats>
+    TraceStats trace_with(std::span<const Ray> rays, std::span<Hit> hits, TraceDetail* detail);
 
     EdacrtParams params_;
     Method method_;

@@ -25,15 +25,18 @@ std::size_t intersect_all(const Ray& ray, std::span<const Triangle> triangles, H
     return triangles.size();
 }
 
-/// Returns the number of ray-triangle tests.
+/// Returns the number of ray-triangle tests; records each ray's in `ray_stats` if given.
 template <Query Q>
 std::uint64_t trace_all(std::span<const Triangle> triangles, std::span<const Ray> rays,
-                        std::span<Hit> hits) {
+                        std::span<Hit> hits, RayStats* ray_stats) {
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, rays.size(), 64), std::uint64_t{0},
         [&](const auto& range, std::uint64_t tests) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i)
-                tests += intersect_all<Q>(rays[i], triangles, hits[i]);
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const std::size_t ray_tests = intersect_all<Q>(rays[i], triangles, hits[i]);
+                if (ray_stats) ray_stats[i].ray_triangle_tests = std::uint32_t(ray_tests);
+                tests += ray_tests;
+            }
             return tests;
         },
         std::plus<>());
@@ -43,13 +46,15 @@ std::uint64_t trace_all(std::span<const Triangle> triangles, std::span<const Ray
 
 void NaiveTracer::set_scene(const Scene& scene) { triangles_ = gather_triangles(scene); }
 
-TraceStats NaiveTracer::trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) {
+TraceStats NaiveTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                                    TraceDetail* detail) {
     assert(rays.size() == hits.size());
+    RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
     TraceStats stats;
     stats.rays = rays.size();
     stats.ray_triangle_tests = query == Query::closest
-                                   ? trace_all<Query::closest>(triangles_, rays, hits)
-                                   : trace_all<Query::any>(triangles_, rays, hits);
+                                   ? trace_all<Query::closest>(triangles_, rays, hits, ray_stats)
+                                   : trace_all<Query::any>(triangles_, rays, hits, ray_stats);
     return stats;
 }
 

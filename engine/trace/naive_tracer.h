@@ -10,7 +10,10 @@ class NaiveTracer final : public Tracer {
   public:
     Method method() const override { return Method::naive; }
     void set_scene(const Scene& scene) override;
-    TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) override;
+
+  protected:
+    TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                           TraceDetail* detail) override;
 
   private:
     std::vector<Triangle> triangles_;

@@ -10,6 +10,7 @@
 #include "geometry/triangle.h"
 #include "scene/scene.h"
 #include "trace/edacrt_params.h"
+#include "trace/trace_stats.h"
 
 namespace edacrt {
 
@@ -18,20 +19,6 @@ enum class Method { naive, edacrt, dacrt, bvh };
 
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };
-
-/// What one trace call did.
-struct TraceStats {
-    std::uint64_t rays = 0;
-    std::uint64_t ray_box_tests = 0;
-    std::uint64_t ray_triangle_tests = 0;
-
-    TraceStats& operator+=(const TraceStats& o) {
-        rays += o.rays;
-        ray_box_tests += o.ray_box_tests;
-        ray_triangle_tests += o.ray_triangle_tests;
-        return *this;
-    }
-};
 
 /// Traces batches of rays against one scene. Every method returns the same hits for the same
 /// rays (up to ties between triangles hit at the same distance).
@@ -48,7 +35,21 @@ class Tracer {
     /// hits[i] receives the closest hit of rays[i] in [tmin, tmax] (Query::closest) or, for
     /// Query::any, a hit with prim >= 0 when anything occludes the ray. Rays must be valid
     /// (finite origin, finite non-zero direction, tmin <= tmax); see validate_ray().
-    virtual TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) = 0;
+    /// With `detail`, also records per-ray (and, for recursive methods, per-level) statistics;
+    /// without it the fast path counts only the totals.
+    TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                     TraceDetail* detail = nullptr) {
+        if (detail) {
+            detail->levels.clear();
+            detail->rays.assign(rays.size(), RayStats{});
+        }
+        return trace_batch(rays, hits, query, detail);
+    }
+
+  protected:
+    /// trace() with `detail` reset (levels empty, one zeroed RayStats per ray) or null.
+    virtual TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                                   TraceDetail* detail) = 0;
 };
 
 /// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt with

@@ -1,5 +1,7 @@
 // The edacrt tool: 'trace' equals calling the engine directly; bad input fails cleanly.
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <filesystem>
@@ -81,8 +83,16 @@ TEST_F(TraceCli, StatsFileIsWritten) {
     ASSERT_EQ(result.exit_code, 0) << result.output;
     std::ifstream in(path("stats.json"));
     const std::string json((std::istreambuf_iterator<char>(in)), {});
-    EXPECT_NE(json.find("\"ray_triangle_tests\""), std::string::npos);
-    EXPECT_NE(json.find("\"rays\": 100"), std::string::npos);
+    const auto stats = nlohmann::json::parse(json);
+    EXPECT_EQ(stats["rays"], 100);
+    EXPECT_EQ(stats["method"], "edacrt");
+    // The detailed pass counts exactly what the timed one did.
+    EXPECT_EQ(stats["detail"]["per_ray"]["rays"], 100);
+    std::uint64_t level_triangle_tests = 0;
+    for (const auto& level : stats["detail"]["levels"])
+        level_triangle_tests += level["ray_triangle_tests"].get<std::uint64_t>();
+    EXPECT_EQ(level_triangle_tests, stats["ray_triangle_tests"].get<std::uint64_t>());
+    EXPECT_GT(stats["detail"]["levels"].size(), 0u);
 }
 
 TEST_F(TraceCli, BadInputFailsWithAClearMessage) {

@@ -63,6 +63,10 @@ EyeLightResult render_eye_light(const Scene& scene, const Camera& camera, Tracer
         result.stats += tracer.trace(rays, hits, Query::closest);
         result.trace_seconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (sample == 0 && settings.detail) {
+            std::vector<Hit> again(pixel_count);
+            tracer.trace(rays, again, Query::closest, settings.detail);
+        }
 
         tbb::parallel_for(all_pixels, [&](const auto& range) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)

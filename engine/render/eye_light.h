@@ -15,6 +15,9 @@ struct EyeLightSettings {
     int height = 512;
     int spp = 1;             // samples per pixel; 1 samples pixel centres, more are jittered
     std::uint32_t seed = 0;  // jitter seed
+    // When set, receives the statistics of the first sample's camera rays (one ray per pixel),
+    // from an extra pass that is not part of trace_seconds.
+    TraceDetail* detail = nullptr;
 };
 
 struct EyeLightResult {

@@ -1,0 +1,49 @@
+#include "stats_json.h"
+
+#include <algorithm>
+
+namespace edacrt::cli {
+
+nlohmann::json to_json(const TraceDetail& detail) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (std::size_t d = 0; d < detail.levels.size(); ++d) {
+        const LevelStats& l = detail.levels[d];
+        levels.push_back({{"level", d},
+                          {"nodes", l.nodes},
+                          {"leaves", l.leaves},
+                          {"rays_in", l.rays_in},
+                          {"rays_passed", l.rays_passed},
+                          {"filters_done", l.filters_done},
+                          {"filters_skipped", l.filters_skipped},
+                          {"triangles", l.triangles},
+                          {"ray_box_tests", l.ray_box_tests},
+                          {"ray_triangle_tests", l.ray_triangle_tests},
+                          {"sampled_rays", l.sampled_rays},
+                          {"candidate_splits", l.candidate_splits},
+                          {"order_hits", l.order_hits},
+                          {"order_misses", l.order_misses},
+                          {"seconds", l.seconds}});
+    }
+    double box_sum = 0, tri_sum = 0, miss_sum = 0;
+    std::uint32_t box_max = 0, tri_max = 0, deepest = 0;
+    for (const RayStats& r : detail.rays) {
+        box_sum += r.ray_box_tests;
+        tri_sum += r.ray_triangle_tests;
+        miss_sum += r.order_misses;
+        box_max = std::max(box_max, r.ray_box_tests);
+        tri_max = std::max(tri_max, r.ray_triangle_tests);
+        deepest = std::max<std::uint32_t>(deepest, r.deepest_level);
+    }
+    const double n = std::max<double>(1.0, double(detail.rays.size()));
+    return {{"levels", levels},
+            {"per_ray",
+             {{"rays", detail.rays.size()},
+              {"ray_box_tests_mean", box_sum / n},
+              {"ray_box_tests_max", box_max},
+              {"ray_triangle_tests_mean", tri_sum / n},
+              {"ray_triangle_tests_max", tri_max},
+              {"order_misses_mean", miss_sum / n},
+              {"deepest_level_max", deepest}}}};
+}
+
+}  // namespace edacrt::cli

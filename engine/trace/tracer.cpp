@@ -2,13 +2,17 @@
 
 #include "trace/bvh_tracer.h"
 #include "trace/edacrt_tracer.h"
+#ifdef EDACRT_HAS_EMBREE
+#include "trace/embree_tracer.h"
+#endif
 #include "trace/naive_tracer.h"
 #include "util/error.h"
 
 namespace edacrt {
 
 namespace {
-constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::naive};
+constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::embree,
+                               Method::naive};
 }
 
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
@@ -17,6 +21,12 @@ std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
             return std::make_unique<NaiveTracer>();
         case Method::bvh:
             return std::make_unique<BvhTracer>();
+        case Method::embree:
+#ifdef EDACRT_HAS_EMBREE
+            return std::make_unique<EmbreeTracer>();
+#else
+            throw InputError("this build has no Embree: configure with -DEDACRT_EMBREE=ON");
+#endif
         case Method::edacrt:
             return std::make_unique<EdacrtTracer>(params, Method::edacrt);
         case Method::dacrt:
@@ -31,6 +41,8 @@ std::string_view method_name(Method method) {
             return "naive";
         case Method::bvh:
             return "bvh";
+        case Method::embree:
+            return "embree";
         case Method::edacrt:
             return "edacrt";
         case Method::dacrt:

@@ -15,7 +15,7 @@
 namespace edacrt {
 
 /// The tracing methods behind the Tracer interface.
-enum class Method { naive, edacrt, dacrt, bvh };
+enum class Method { naive, edacrt, dacrt, bvh, embree };
 
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };

@@ -1,9 +1,9 @@
 // edacrt render: primary rays with eye-light shading, to PNG.
 #include <chrono>
 #include <iostream>
-#include <optional>
 #include <vector>
 
+#include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "render/eye_light.h"
@@ -17,29 +17,15 @@ struct RenderOptions {
     CommonOptions common;
     EyeLightSettings settings;
     std::string out = "out/render.png";
-    std::vector<float> eye, look_at, up;
-    std::optional<float> fov;
+    CameraOptions camera;
 };
-
-glm::vec3 to_vec3(const std::vector<float>& v) { return {v[0], v[1], v[2]}; }
-
-/// The scene's own camera, else one that frames the scene; overridden piece by piece.
-Camera choose_camera(const Scene& scene, const RenderOptions& o) {
-    Camera camera = scene.camera.value_or(frame_box(scene.bounds()));
-    if (!o.eye.empty()) camera.eye = to_vec3(o.eye);
-    if (!o.look_at.empty()) camera.look_at = to_vec3(o.look_at);
-    if (!o.up.empty()) camera.up = to_vec3(o.up);
-    if (o.fov) camera.vfov_degrees = *o.fov;
-    validate(camera);
-    return camera;
-}
 
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     const Method method = parse_method(o.common.method);
     const auto tracer = make_tracer(method, o.common.edacrt);  // rejects bad parameters early
     const Scene scene = load_scene_verbose(o.common.scene);
-    const Camera camera = choose_camera(scene, o);
+    const Camera camera = choose_camera(scene, o.camera);
 
     auto start = std::chrono::steady_clock::now();
     tracer->set_scene(scene);
@@ -105,13 +91,7 @@ std::function<void()> add_render_command(CLI::App& app) {
     command->add_option("--seed", o.settings.seed, "seed of the pixel jitter")
         ->capture_default_str();
     command->add_option("--out", o.out, "output PNG")->capture_default_str();
-    const auto vec3_option = [&](const char* name, std::vector<float>& target, const char* what) {
-        command->add_option(name, target, what)->expected(3)->delimiter(',');
-    };
-    vec3_option("--eye", o.eye, "camera position X,Y,Z (default: frames the scene from +z)");
-    vec3_option("--look-at", o.look_at, "point the camera looks at X,Y,Z");
-    vec3_option("--up", o.up, "camera up vector X,Y,Z");
-    command->add_option("--fov", o.fov, "vertical field of view in degrees");
+    add_camera_options(*command, o.camera);
     return [options] { run(*options); };
 }
 

@@ -1,11 +1,11 @@
 // The edacrt tool: 'trace' equals calling the engine directly; bad input fails cleanly.
 #include <gtest/gtest.h>
-
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "cli_runner.h"
@@ -93,6 +93,30 @@ TEST_F(TraceCli, StatsFileIsWritten) {
         level_triangle_tests += level["ray_triangle_tests"].get<std::uint64_t>();
     EXPECT_EQ(level_triangle_tests, stats["ray_triangle_tests"].get<std::uint64_t>());
     EXPECT_GT(stats["detail"]["levels"].size(), 0u);
+}
+
+TEST_F(TraceCli, CameraRaysAreTheEnginesAndFeedTrace) {
+    const auto result = test::run_cli(
+        "camera-rays --scene builtin:cornell --width 32 --height 24 "
+        "--out " +
+        path("camera.rays"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const std::vector<Ray> rays = read_rays(path("camera.rays"));
+    const Scene scene = make_builtin_scene("builtin:cornell");
+    const std::vector<Ray> expected = PinholeProjection(*scene.camera, 32, 24).pixel_centre_rays();
+    ASSERT_EQ(rays.size(), expected.size());
+    EXPECT_EQ(std::memcmp(rays.data(), expected.data(), rays.size() * sizeof(Ray)), 0);
+
+    const auto traced = test::run_cli("trace --scene builtin:cornell --rays " +
+                                      path("camera.rays") + " --out " + path("hits.bin"));
+    ASSERT_EQ(traced.exit_code, 0) << traced.output;
+    const std::vector<Hit> hits = read_hits(path("hits.bin"));
+    std::vector<Hit> engine_hits(rays.size());
+    const auto tracer = make_tracer(Method::edacrt);
+    tracer->set_scene(scene);
+    tracer->trace(rays, engine_hits, Query::closest);
+    ASSERT_EQ(hits.size(), engine_hits.size());
+    EXPECT_EQ(std::memcmp(hits.data(), engine_hits.data(), hits.size() * sizeof(Hit)), 0);
 }
 
 TEST_F(TraceCli, BadInputFailsWithAClearMessage) {

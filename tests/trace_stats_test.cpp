@@ -12,10 +12,9 @@ namespace edacrt {
 namespace {
 
 std::vector<Ray> camera_and_random_rays(const Scene& scene) {
-    std::vector<Ray> rays;
-    const PinholeProjection projection(scene.camera.value_or(frame_box(scene.bounds())), 80, 60);
-    for (int y = 0; y < 60; ++y)
-        for (int x = 0; x < 80; ++x) rays.push_back(projection.ray(x + 0.5f, y + 0.5f));
+    std::vector<Ray> rays =
+        PinholeProjection(scene.camera.value_or(frame_box(scene.bounds())), 80, 60)
+            .pixel_centre_rays();
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
     for (int i = 0; i < 3000; ++i)

@@ -37,7 +37,7 @@ void validate(const Camera& camera) {
 }
 
 PinholeProjection::PinholeProjection(const Camera& camera, int width, int height)
-    : eye_(camera.eye) {
+    : eye_(camera.eye), width_(width), height_(height) {
     validate(camera);
     const glm::vec3 forward = glm::normalize(camera.look_at - camera.eye);
     const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
@@ -54,6 +54,14 @@ Ray PinholeProjection::ray(float x, float y) const {
     ray.org = eye_;
     ray.dir = glm::normalize(top_left_ + x * step_x_ + y * step_y_);
     return ray;
+}
+
+std::vector<Ray> PinholeProjection::pixel_centre_rays() const {
+    std::vector<Ray> rays;
+    rays.reserve(std::size_t(width_) * std::size_t(height_));
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) rays.push_back(ray(float(x) + 0.5f, float(y) + 0.5f));
+    return rays;
 }
 
 }  // namespace edacrt

@@ -1,5 +1,6 @@
 #pragma once
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "geometry/aabb.h"
 #include "geometry/ray.h"
@@ -31,11 +32,15 @@ class PinholeProjection {
     /// top-left pixel, (width, height) the bottom-right corner of the image.
     Ray ray(float x, float y) const;
 
+    /// One ray through each pixel centre, row by row from the top-left.
+    std::vector<Ray> pixel_centre_rays() const;
+
   private:
     glm::vec3 eye_;
     glm::vec3 top_left_;  // direction to the image corner at distance 1
     glm::vec3 step_x_;    // direction change per pixel
     glm::vec3 step_y_;
+    int width_, height_;
 };
 
 }  // namespace edacrt

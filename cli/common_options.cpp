@@ -18,6 +18,10 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
     for (const std::string& name : method_names()) methods += (methods.empty() ? "" : "|") + name;
     command.add_option("--method", options.method, "tracing method: " + methods)
         ->capture_default_str();
+    command
+        .add_option("--embree-mode", options.embree_mode,
+                    "how embree takes rays: single|packet8|stream")
+        ->capture_default_str();
     command.add_option("--threads", options.threads, "worker threads (0: all cores)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
@@ -43,6 +47,11 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
     param("--filter-skip", p.filter_skip, "skip filtering when most rays hit the child (0/1)");
     param("--sampling", p.sampling, "estimate hit ratios by ray sampling (0/1)");
     param("--sampling-seed", p.seed, "seed of the per-node ray sampling");
+}
+
+std::unique_ptr<Tracer> make_tracer(const CommonOptions& options) {
+    return edacrt::make_tracer(parse_method(options.method), options.edacrt,
+                               parse_embree_mode(options.embree_mode));
 }
 
 std::unique_ptr<tbb::global_control> apply_thread_limit(const CommonOptions& options) {

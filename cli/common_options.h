@@ -18,12 +18,16 @@ namespace edacrt::cli {
 struct CommonOptions {
     std::string scene;
     std::string method = "edacrt";
+    std::string embree_mode{embree_mode_name(kDefaultEmbreeMode)};
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
     EdacrtParams edacrt;
 };
 
 void add_common_options(CLI::App& command, CommonOptions& options);
+
+/// The tracer --method names, with its parameters; throws InputError for bad ones.
+std::unique_ptr<Tracer> make_tracer(const CommonOptions& options);
 
 /// Limits oneTBB to --threads for as long as the returned object lives.
 std::unique_ptr<tbb::global_control> apply_thread_limit(const CommonOptions& options);

@@ -23,7 +23,7 @@ struct RenderOptions {
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     const Method method = parse_method(o.common.method);
-    const auto tracer = make_tracer(method, o.common.edacrt);  // rejects bad parameters early
+    const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     const Scene scene = load_scene_verbose(o.common.scene);
     const Camera camera = choose_camera(scene, o.camera);
 
@@ -52,6 +52,7 @@ void run(const RenderOptions& o) {
                             {"scene", scene.source},
                             {"triangles", scene.triangle_count()},
                             {"method", method_name(method)},
+                            {"embree_mode", o.common.embree_mode},
                             {"width", o.settings.width},
                             {"height", o.settings.height},
                             {"spp", o.settings.spp},

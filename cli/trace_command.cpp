@@ -21,7 +21,7 @@ struct TraceOptions {
 void run(const TraceOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     const Method method = parse_method(o.common.method);
-    const auto tracer = make_tracer(method, o.common.edacrt);  // rejects bad parameters early
+    const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     const std::vector<Ray> rays = read_rays(o.rays_path);
     const Scene scene = load_scene_verbose(o.common.scene);
 
@@ -47,6 +47,7 @@ void run(const TraceOptions& o) {
                                  {"scene", scene.source},
                                  {"triangles", scene.triangle_count()},
                                  {"method", method_name(method)},
+                                 {"embree_mode", o.common.embree_mode},
                                  {"query", o.any_hit ? "any" : "closest"},
                                  {"rays", stats.rays},
                                  {"hits", hit_count},

@@ -197,7 +197,12 @@ std::vector<Variant> variants() {
         {"bvh", [] { return make_tracer(Method::bvh); }},
         {"dacrt", [] { return make_tracer(Method::dacrt); }},
 #ifdef EDACRT_HAS_EMBREE
-        {"embree", [] { return make_tracer(Method::embree); }, false},
+        {"embree single", [] { return make_tracer(Method::embree, {}, EmbreeMode::single); },
+         false},
+        {"embree packet8", [] { return make_tracer(Method::embree, {}, EmbreeMode::packet8); },
+         false},
+        {"embree stream", [] { return make_tracer(Method::embree, {}, EmbreeMode::stream); },
+         false},
 #endif
     };
     const auto edacrt = [&](const std::string& name, auto edit) {

@@ -3,31 +3,38 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "util/error.h"
 
 namespace edacrt {
 namespace {
 
-/// An intersect context that also receives the occluder an occlusion query accepted
-/// (rtcOccluded1 itself reports only whether the ray is blocked).
+/// An intersect context that also receives the occluders an occlusion query accepted
+/// (rtcOccluded* itself reports only whether a ray is blocked). Rays carry their index in the
+/// batch as their id, so the filter finds each lane's hit in every mode (1, 8, stream).
 struct OcclusionContext {
     RTCIntersectContext base;  // first member: Embree passes &base back to the filter
-    Hit* hit;
+    Hit* hits;
 };
 
-void record_occluder(const RTCFilterFunctionNArguments* args) {
-    assert(args->N == 1);
-    auto* context = reinterpret_cast<OcclusionContext*>(args->context);
-    // During a filter call the candidate's distance is the ray's tfar.
-    *context->hit = {RTCRayN_tfar(args->ray, 1, 0), std::int32_t(RTCHitN_primID(args->hit, 1, 0)),
-                     RTCHitN_u(args->hit, 1, 0), RTCHitN_v(args->hit, 1, 0)};
+void record_occluders(const RTCFilterFunctionNArguments* args) {
+    const auto* context = reinterpret_cast<const OcclusionContext*>(args->context);
+    for (unsigned lane = 0; lane < args->N; ++lane) {
+        if (args->valid[lane] != -1) continue;
+        // During a filter call the candidate's distance is the ray's tfar.
+        context->hits[RTCRayN_id(args->ray, args->N, lane)] = {
+            RTCRayN_tfar(args->ray, args->N, lane),
+            std::int32_t(RTCHitN_primID(args->hit, args->N, lane)),
+            RTCHitN_u(args->hit, args->N, lane), RTCHitN_v(args->hit, args->N, lane)};
+    }
 }
 
-RTCRay to_embree(const Ray& ray) {
+RTCRay to_embree(const Ray& ray, std::size_t id) {
     RTCRay r;
     r.org_x = ray.org.x;
     r.org_y = ray.org.y;
@@ -39,14 +46,55 @@ RTCRay to_embree(const Ray& ray) {
     r.tfar = ray.tmax;
     r.time = 0.0f;
     r.mask = ~0u;
-    r.id = 0;
+    r.id = unsigned(id);
     r.flags = 0;
     return r;
 }
 
+RTCRayHit to_embree_hit(const Ray& ray, std::size_t id) {
+    RTCRayHit r;
+    r.ray = to_embree(ray, id);
+    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return r;
+}
+
+Hit from_embree(const RTCRayHit& r) {
+    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit{};
+    return {r.ray.tfar, std::int32_t(r.hit.primID), r.hit.u, r.hit.v};
+}
+
+void set_lane(RTCRayHit8& packet, int lane, const Ray& ray, std::size_t id) {
+    packet.ray.org_x[lane] = ray.org.x;
+    packet.ray.org_y[lane] = ray.org.y;
+    packet.ray.org_z[lane] = ray.org.z;
+    packet.ray.dir_x[lane] = ray.dir.x;
+    packet.ray.dir_y[lane] = ray.dir.y;
+    packet.ray.dir_z[lane] = ray.dir.z;
+    packet.ray.tnear[lane] = ray.tmin;
+    packet.ray.tfar[lane] = ray.tmax;
+    packet.ray.time[lane] = 0.0f;
+    packet.ray.mask[lane] = ~0u;
+    packet.ray.id[lane] = unsigned(id);
+    packet.ray.flags[lane] = 0;
+    packet.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+}
+
+/// Rays [begin, end) of the batch (end - begin <= 8) as one packet, `valid` marking the lanes.
+void make_packet(std::span<const Ray> rays, std::size_t begin, std::size_t end, RTCRayHit8& packet,
+                 int valid[8]) {
+    for (int lane = 0; lane < 8; ++lane) {
+        const bool active = begin + lane < end;
+        valid[lane] = active ? -1 : 0;
+        // Inactive lanes get a copy of the first ray so every lane holds finite data.
+        set_lane(packet, lane, rays[active ? begin + lane : begin], active ? begin + lane : begin);
+    }
+}
+
 }  // namespace
 
-EmbreeTracer::EmbreeTracer() {
+EmbreeTracer::EmbreeTracer(EmbreeMode mode) : mode_(mode) {
     // No "threads=N" here: that would limit oneTBB for the whole process.
     device_ = rtcNewDevice(nullptr);
     if (!device_)
@@ -80,33 +128,75 @@ void EmbreeTracer::set_scene(const Scene& scene) {
     rtcCommitScene(scene_);
 }
 
+void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query,
+                               std::size_t begin, std::size_t end) {
+    OcclusionContext context;
+    rtcInitIntersectContext(&context.base);
+    if (query == Query::any) {
+        context.base.filter = record_occluders;
+        context.hits = hits.data();
+    }
+    for (std::size_t i = begin; i != end; ++i) hits[i] = Hit{};
+    switch (mode_) {
+        case EmbreeMode::single:
+            for (std::size_t i = begin; i != end; ++i) {
+                if (query == Query::closest) {
+                    RTCRayHit ray_hit = to_embree_hit(rays[i], i);
+                    rtcIntersect1(scene_, &context.base, &ray_hit);
+                    hits[i] = from_embree(ray_hit);
+                } else {
+                    RTCRay ray = to_embree(rays[i], i);
+                    rtcOccluded1(scene_, &context.base, &ray);
+                    if (ray.tfar != -kInfinity) hits[i] = Hit{};  // not occluded after all
+                }
+            }
+            break;
+        case EmbreeMode::packet8:
+            for (std::size_t first = begin; first < end; first += 8) {
+                const std::size_t last = std::min(first + 8, end);
+                alignas(32) int valid[8];
+                alignas(32) RTCRayHit8 packet;
+                make_packet(rays, first, last, packet, valid);
+                if (query == Query::closest) {
+                    rtcIntersect8(valid, scene_, &context.base, &packet);
+                    for (std::size_t i = first; i < last; ++i) {
+                        const int lane = int(i - first);
+                        if (packet.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID)
+                            hits[i] = {packet.ray.tfar[lane], std::int32_t(packet.hit.primID[lane]),
+                                       packet.hit.u[lane], packet.hit.v[lane]};
+                    }
+                } else {
+                    rtcOccluded8(valid, scene_, &context.base, &packet.ray);
+                    for (std::size_t i = first; i < last; ++i)
+                        if (packet.ray.tfar[i - first] != -kInfinity) hits[i] = Hit{};
+                }
+            }
+            break;
+        case EmbreeMode::stream: {
+            thread_local std::vector<RTCRayHit> stream;
+            stream.clear();
+            for (std::size_t i = begin; i != end; ++i) stream.push_back(to_embree_hit(rays[i], i));
+            const unsigned count = unsigned(end - begin);
+            if (query == Query::closest) {
+                rtcIntersect1M(scene_, &context.base, stream.data(), count, sizeof(RTCRayHit));
+                for (std::size_t i = begin; i != end; ++i) hits[i] = from_embree(stream[i - begin]);
+            } else {
+                // RTCRayHit starts with its RTCRay, so the same array serves with its stride.
+                rtcOccluded1M(scene_, &context.base, &stream[0].ray, count, sizeof(RTCRayHit));
+                for (std::size_t i = begin; i != end; ++i)
+                    if (stream[i - begin].ray.tfar != -kInfinity) hits[i] = Hit{};
+            }
+            break;
+        }
+    }
+}
+
 TraceStats EmbreeTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                      TraceDetail*) {
     assert(rays.size() == hits.size() && scene_);
+    // Ranges of whole packets, large enough for streams to pay off.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            Hit& hit = hits[i] = Hit{};
-            if (query == Query::closest) {
-                RTCIntersectContext context;
-                rtcInitIntersectContext(&context);
-                RTCRayHit ray_hit;
-                ray_hit.ray = to_embree(rays[i]);
-                ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene_, &context, &ray_hit);
-                if (ray_hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-                    hit = {ray_hit.ray.tfar, std::int32_t(ray_hit.hit.primID), ray_hit.hit.u,
-                           ray_hit.hit.v};
-            } else {
-                OcclusionContext context;
-                rtcInitIntersectContext(&context.base);
-                context.base.filter = record_occluder;
-                context.hit = &hit;
-                RTCRay ray = to_embree(rays[i]);
-                rtcOccluded1(scene_, &context.base, &ray);
-                if (ray.tfar != -kInfinity) hit = Hit{};  // not occluded after all
-            }
-        }
+        trace_range(rays, hits, query, range.begin(), range.end());
     });
     // Embree does not report its internal test counts.
     TraceStats stats;

@@ -6,10 +6,11 @@
 namespace edacrt {
 
 /// The industrial reference: Embree 3, its BVH built in set_scene() (per frame) with the robust
-/// (watertight) flag, traced with rtcIntersect1 / rtcOccluded1 over rays in parallel.
+/// (watertight) flag, traced over ranges of rays in parallel with single rays (rtcIntersect1),
+/// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says.
 class EmbreeTracer final : public Tracer {
   public:
-    EmbreeTracer();
+    explicit EmbreeTracer(EmbreeMode mode = kDefaultEmbreeMode);
     ~EmbreeTracer() override;
     EmbreeTracer(const EmbreeTracer&) = delete;
     EmbreeTracer& operator=(const EmbreeTracer&) = delete;
@@ -22,6 +23,10 @@ class EmbreeTracer final : public Tracer {
                            TraceDetail* detail) override;
 
   private:
+    void trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query, std::size_t begin,
+                     std::size_t end);
+
+    EmbreeMode mode_;
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
 };

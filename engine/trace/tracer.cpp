@@ -15,7 +15,8 @@ constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Metho
                                Method::naive};
 }
 
-std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
+std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params,
+                                    EmbreeMode embree_mode) {
     switch (method) {
         case Method::naive:
             return std::make_unique<NaiveTracer>();
@@ -23,8 +24,9 @@ std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params) {
             return std::make_unique<BvhTracer>();
         case Method::embree:
 #ifdef EDACRT_HAS_EMBREE
-            return std::make_unique<EmbreeTracer>();
+            return std::make_unique<EmbreeTracer>(embree_mode);
 #else
+            (void)embree_mode;
             throw InputError("this build has no Embree: configure with -DEDACRT_EMBREE=ON");
 #endif
         case Method::edacrt:
@@ -63,6 +65,25 @@ std::vector<std::string> method_names() {
     std::vector<std::string> names;
     for (Method m : kMethods) names.emplace_back(method_name(m));
     return names;
+}
+
+std::string_view embree_mode_name(EmbreeMode mode) {
+    switch (mode) {
+        case EmbreeMode::single:
+            return "single";
+        case EmbreeMode::packet8:
+            return "packet8";
+        case EmbreeMode::stream:
+            return "stream";
+    }
+    return "?";
+}
+
+EmbreeMode parse_embree_mode(std::string_view name) {
+    for (EmbreeMode mode : {EmbreeMode::single, EmbreeMode::packet8, EmbreeMode::stream})
+        if (embree_mode_name(mode) == name) return mode;
+    throw InputError("unknown Embree mode '" + std::string(name) +
+                     "' (known: single, packet8, stream)");
 }
 
 std::vector<Triangle> gather_triangles(const Scene& scene) {

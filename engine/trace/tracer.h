@@ -17,6 +17,10 @@ namespace edacrt {
 /// The tracing methods behind the Tracer interface.
 enum class Method { naive, edacrt, dacrt, bvh, embree };
 
+/// How the Embree baseline hands rays to Embree: one at a time, in packets of 8, or as streams.
+enum class EmbreeMode { single, packet8, stream };
+inline constexpr EmbreeMode kDefaultEmbreeMode = EmbreeMode::packet8;  // fastest on camera rays (README)
+
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };
 
@@ -53,8 +57,10 @@ class Tracer {
 };
 
 /// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt with
-/// sampling and filter skipping off); the others ignore it. Throws InputError for bad params.
-std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {});
+/// sampling and filter skipping off), embree takes `embree_mode`; the others ignore them.
+/// Throws InputError for bad params.
+std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {},
+                                    EmbreeMode embree_mode = kDefaultEmbreeMode);
 
 std::string_view method_name(Method method);
 
@@ -63,6 +69,11 @@ Method parse_method(std::string_view name);
 
 /// The names of all methods, for help texts.
 std::vector<std::string> method_names();
+
+std::string_view embree_mode_name(EmbreeMode mode);
+
+/// "packet8" -> EmbreeMode::packet8; throws InputError listing the known names.
+EmbreeMode parse_embree_mode(std::string_view name);
 
 /// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
 std::vector<Triangle> gather_triangles(const Scene& scene);

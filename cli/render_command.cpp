@@ -1,12 +1,14 @@
-// edacrt render: primary rays with eye-light shading, to PNG.
+// edacrt render: the progressive wavefront renderer (primary, ao or path), to PNG or PFM.
 #include <chrono>
+#include <cmath>
 #include <iostream>
+#include <optional>
 #include <vector>
 
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
-#include "render/eye_light.h"
+#include "render/renderer.h"
 #include "stats_json.h"
 #include "util/error.h"
 
@@ -15,15 +17,37 @@ namespace {
 
 struct RenderOptions {
     CommonOptions common;
-    EyeLightSettings settings;
+    RenderSettings settings;
+    std::string integrator = "path";
+    std::string primary = "eye-light";
+    int spp = 16;
+    bool spp_given = false;
+    double time_budget = 0.0;
+    std::string reference;
     std::string out = "out/render.png";
+    float exposure = 0.0f;
+    std::string tone_map = "clamp";
+    std::vector<float> sky;
     CameraOptions camera;
 };
 
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
-    const Method method = parse_method(o.common.method);
+    RenderSettings settings = o.settings;
+    settings.integrator = parse_integrator(o.integrator);
+    settings.primary = parse_primary_shading(o.primary);
+    if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
+    validate(settings);
+    const ToneMap tone = parse_tone_map(o.tone_map);
+    if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
+        throw InputError("--time-budget must be a finite number of seconds >= 0");
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
+    std::optional<Image> reference;
+    if (!o.reference.empty()) reference = read_image(o.reference);
+    if (reference && (reference->width != settings.width || reference->height != settings.height))
+        throw InputError(o.reference + ": the reference is " + std::to_string(reference->width) +
+                         "x" + std::to_string(reference->height) + ", the render " +
+                         std::to_string(settings.width) + "x" + std::to_string(settings.height));
     const Scene scene = load_scene_verbose(o.common.scene);
     const Camera camera = choose_camera(scene, o.camera);
 
@@ -31,39 +55,70 @@ void run(const RenderOptions& o) {
     tracer->set_scene(scene);
     const double prepare_seconds = seconds_since(start);
 
-    EyeLightSettings settings = o.settings;
+    Renderer renderer(scene, *tracer, camera, settings);
+    for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";
+    // With only a time budget, render until it is spent.
+    const int spp = o.time_budget > 0.0 && !o.spp_given ? 1 << 20 : o.spp;
     TraceDetail detail;
-    if (!o.common.stats_path.empty()) settings.detail = &detail;
+    nlohmann::json passes = nlohmann::json::array();
     start = std::chrono::steady_clock::now();
-    const EyeLightResult result = render_eye_light(scene, camera, *tracer, settings);
-    const double render_seconds = seconds_since(start);
+    double elapsed = 0.0;
+    while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget)) {
+        const bool first = renderer.film().passes() == 0;
+        renderer.render_pass(nullptr, first && !o.common.stats_path.empty() ? &detail : nullptr);
+        elapsed = seconds_since(start);
+        nlohmann::json pass = {{"spp", renderer.film().passes()},
+                               {"seconds", elapsed},
+                               {"trace_seconds", renderer.total().trace_seconds},
+                               {"rays", renderer.total().trace.rays}};
+        if (reference) {
+            const ImageError error = compare_images(renderer.film().mean(), *reference);
+            pass["rmse"] = error.rmse;
+            pass["relative_mse"] = error.relative_mse;
+            std::cout << "spp " << renderer.film().passes() << "  " << elapsed << " s  rmse "
+                      << error.rmse << "  relMSE " << error.relative_mse << "\n";
+        }
+        passes.push_back(pass);
+    }
+    const double render_seconds = elapsed;
 
     const std::filesystem::path out(o.out);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    write_png(out, result.image);
+    const Image mean = renderer.film().mean();
+    write_image(out, out.extension() == ".pfm" ? mean : tone_map(mean, o.exposure, tone));
 
-    const double mrays = double(result.stats.rays) / result.trace_seconds * 1e-6;
-    std::cout << "rendered " << o.settings.width << "x" << o.settings.height << " at "
-              << o.settings.spp << " spp with " << method_name(method) << ": " << result.stats.rays
-              << " rays traced in " << result.trace_seconds << " s (" << mrays
-              << " Mrays/s), written to " << o.out << "\n";
+    const PassStats& total = renderer.total();
+    const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;
+    std::cout << "rendered " << settings.width << "x" << settings.height << " at "
+              << renderer.film().passes() << " spp (" << o.integrator << ") with "
+              << method_name(tracer->method()) << " in " << render_seconds
+              << " s: " << total.trace.rays << " rays in " << total.batches << " batches traced in "
+              << total.trace_seconds << " s (" << mrays << " Mrays/s), written to " << o.out
+              << "\n";
+    if (total.dropped_samples)
+        std::cerr << "edacrt: warning: " << total.dropped_samples
+                  << " non-finite samples were replaced by black\n";
 
     nlohmann::json stats = {{"command", "render"},
                             {"scene", scene.source},
                             {"triangles", scene.triangle_count()},
-                            {"method", method_name(method)},
-                            {"embree_mode", o.common.embree_mode},
-                            {"width", o.settings.width},
-                            {"height", o.settings.height},
-                            {"spp", o.settings.spp},
-                            {"seed", o.settings.seed},
-                            {"rays", result.stats.rays},
-                            {"ray_box_tests", result.stats.ray_box_tests},
-                            {"ray_triangle_tests", result.stats.ray_triangle_tests},
+                            {"method", method_name(tracer->method())},
+                            {"integrator", o.integrator},
+                            {"width", settings.width},
+                            {"height", settings.height},
+                            {"spp", renderer.film().passes()},
+                            {"seed", settings.seed},
+                            {"rays", total.trace.rays},
+                            {"batches", total.batches},
+                            {"ray_box_tests", total.trace.ray_box_tests},
+                            {"ray_triangle_tests", total.trace.ray_triangle_tests},
                             {"prepare_seconds", prepare_seconds},
-                            {"trace_seconds", result.trace_seconds},
+                            {"trace_seconds", total.trace_seconds},
                             {"render_seconds", render_seconds},
-                            {"mrays_per_second", mrays}};
+                            {"mrays_per_second", mrays},
+                            {"dropped_samples", total.dropped_samples},
+                            {"passes", passes}};
+    if (tracer->method() == Method::embree) stats["embree_mode"] = o.common.embree_mode;
     stats["detail"] = to_json(detail);
     stats["detail"]["from"] = "an extra, untimed pass of the first sample's camera rays";
     write_stats(o.common, stats);
@@ -76,22 +131,50 @@ std::function<void()> add_render_command(CLI::App& app) {
     RenderOptions& o = *options;
     CLI::App* command = app.add_subcommand(
         "render",
-        "Render camera rays with eye-light shading to a PNG.\n"
-        "Example: edacrt render --scene assets/cornell-box/CornellBox-Original.obj "
-        "--out out/cornell.png");
+        "Render progressively (one sample per pixel per pass) to a PNG, or a PFM for float "
+        "output.\nExample: edacrt render --scene assets/cornell-box/CornellBox-Original.obj "
+        "--spp 64 --out out/cornell.png");
     add_common_options(*command, o.common);
-    command->add_option("--width", o.settings.width, "image width in pixels")
+    RenderSettings& s = o.settings;
+    command->add_option("--width", s.width, "image width in pixels")
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
-    command->add_option("--height", o.settings.height, "image height in pixels")
+    command->add_option("--height", s.height, "image height in pixels")
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
-    command->add_option("--spp", o.settings.spp, "samples per pixel (jittered when > 1)")
-        ->check(CLI::Range(1, 65536))
+    command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
+    command->add_option("--primary", o.primary, "primary shading: eye-light|normal|albedo|depth")
         ->capture_default_str();
-    command->add_option("--seed", o.settings.seed, "seed of the pixel jitter")
+    command
+        ->add_option_function<int>(
+            "--spp",
+            [&o](int spp) {
+                o.spp = spp;
+                o.spp_given = true;
+            },
+            "samples per pixel (default 16, or unlimited with --time-budget)")
+        ->check(CLI::Range(1, 1 << 20));
+    command->add_option("--time-budget", o.time_budget,
+                        "stop after this many seconds of rendering (0: no limit)");
+    command->add_option("--reference", o.reference,
+                        "PFM or PNG of the same size: report the error after every pass");
+    command->add_option("--max-depth", s.max_depth, "path: bounces")->capture_default_str();
+    command->add_option("--roulette-depth", s.roulette_depth, "path: Russian roulette from here")
         ->capture_default_str();
-    command->add_option("--out", o.out, "output PNG")->capture_default_str();
+    command->add_option("--ao-samples", s.ao_samples, "ao: rays per hit")->capture_default_str();
+    command->add_option("--ao-distance", s.ao_distance, "ao: max distance (0: scene size / 4)")
+        ->capture_default_str();
+    command->add_option("--sky", o.sky, "sky radiance R,G,B (scenes without emitters)")
+        ->delimiter(',')
+        ->expected(3);
+    command->add_option("--tile-pixels", s.tile_pixels, "pixels per wavefront")
+        ->capture_default_str();
+    command->add_option("--seed", s.seed, "sample seed")->capture_default_str();
+    command->add_option("--exposure", o.exposure, "PNG: exposure in stops")->capture_default_str();
+    command->add_option("--tone-map", o.tone_map, "PNG: clamp|reinhard|aces")
+        ->capture_default_str();
+    command->add_option("--out", o.out, "output .png (tone-mapped sRGB) or .pfm (linear float)")
+        ->capture_default_str();
     add_camera_options(*command, o.camera);
     return [options] { run(*options); };
 }

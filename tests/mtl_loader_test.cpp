@@ -39,6 +39,7 @@ TEST(MtlLoader, ParsesModelledKeywords) {
         "Ke 17 12 4\n"
         "Ns 96.5\n"
         "Ni 1.45\n"
+        "Tf 0.7 0.8 0.9\n"
         "illum 3\n",
         &warnings);
     ASSERT_EQ(materials.size(), 1u);
@@ -49,6 +50,7 @@ TEST(MtlLoader, ParsesModelledKeywords) {
     EXPECT_EQ(m.ke, glm::vec3(17, 12, 4));
     EXPECT_EQ(m.ns, 96.5f);
     EXPECT_EQ(m.ni, 1.45f);
+    EXPECT_EQ(m.tf, glm::vec3(0.7f, 0.8f, 0.9f));
     EXPECT_EQ(m.illum, 3);
     EXPECT_TRUE(m.emissive());
     EXPECT_TRUE(warnings.empty());
@@ -118,7 +120,7 @@ TEST(MtlLoader, UnmodelledKeywordsAreReportedOnceEach) {
         "map_Kd a.png\n"
         "d 1.0\n"
         "Tr 0\n"
-        "Tf 1 1 1\n"
+        "Ni 1.5\n"
         "bump -bm 0.5 b.png\n"
         "newmtl b\n"
         "map_Kd b.png\n"  // again, and in another case below: not reported again
@@ -130,7 +132,6 @@ TEST(MtlLoader, UnmodelledKeywordsAreReportedOnceEach) {
         "m.mtl:2: MTL feature 'map_Kd' is not modelled (ignored)",
         "m.mtl:3: MTL feature 'd' is not modelled (ignored)",
         "m.mtl:4: MTL feature 'Tr' is not modelled (ignored)",
-        "m.mtl:5: MTL feature 'Tf' is not modelled (ignored)",
         "m.mtl:6: MTL feature 'bump' is not modelled (ignored)",
         "m.mtl:11: MTL feature 'refl' is not modelled (ignored)",
     };

@@ -133,6 +133,19 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
         const float t = reintersect(scene, ray, hit.prim);
         return exact ? t == hit.t : std::abs(t - hit.t) <= tolerance(hit.t);
     };
+    // Our kernel rejects hits whose t is within its rounding bound of 0 (triangle.h); for a ray
+    // nearly parallel to the triangle that bound is large, and another kernel may decide such
+    // an ill-conditioned hit the other way. Tolerated for other kernels only, and rarely.
+    const auto grazing = [&](const Ray& ray, const Hit& a, const Hit& b) {
+        for (const Hit* h : {&a, &b})
+            if (h->hit()) {
+                const glm::vec3 n =
+                    glm::normalize(geometric_normal(scene.corners(std::size_t(h->prim))));
+                if (std::abs(glm::dot(n, glm::normalize(ray.dir))) < 1e-3f) return true;
+            }
+        return false;
+    };
+    std::size_t ill_conditioned = 0;
     tracer.set_scene(scene);
     for (std::size_t set = 0; set < ref.sets.sets.size(); ++set) {
         const auto& [name, rays] = ref.sets.sets[set];
@@ -141,6 +154,13 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
         tracer.trace(rays, got, Query::closest);
         std::size_t hits = 0;
         for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (!exact &&
+                (got[i].hit() != expected[i].hit() ||
+                 std::abs(got[i].t - expected[i].t) > tolerance(expected[i].t)) &&
+                grazing(rays[i], got[i], expected[i])) {
+                ++ill_conditioned;
+                continue;
+            }
             ASSERT_EQ(got[i].hit(), expected[i].hit()) << label << ", " << name << ", ray " << i;
             if (!expected[i].hit()) continue;
             ++hits;
@@ -159,6 +179,11 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
 
         tracer.trace(rays, got, Query::any);
         for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (!exact && got[i].hit() != ref.any[set][i].hit() &&
+                grazing(rays[i], got[i], ref.closest[set][i])) {
+                ++ill_conditioned;
+                continue;
+            }
             ASSERT_EQ(got[i].hit(), ref.any[set][i].hit())
                 << label << ", any hit, " << name << ", ray " << i;
             if (got[i].hit()) {  // the reported occluder really blocks the ray there
@@ -167,6 +192,7 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
             }
         }
     }
+    EXPECT_LE(ill_conditioned, 3u) << label << ": grazing disagreements";
 }
 
 const char* const kSceneNames[] = {

@@ -26,6 +26,7 @@ struct WatertightRay {
     glm::vec3 org;
     int kx, ky, kz;
     float sx, sy, sz;
+    float shear_x, shear_y;  // |sx / sz|, |sy / sz|: the direction's kx, ky magnitudes
 };
 
 inline WatertightRay make_watertight_ray(const Ray& ray) {
@@ -35,7 +36,15 @@ inline WatertightRay make_watertight_ray(const Ray& ray) {
     int ky = kx == 2 ? 0 : kx + 1;
     if (ray.dir[kz] < 0.0f) std::swap(kx, ky);  // keep the winding, so U, V, W keep their sign
     const float sz = 1.0f / ray.dir[kz];
-    return {ray.org, kx, ky, kz, ray.dir[kx] * sz, ray.dir[ky] * sz, sz};
+    return {ray.org,
+            kx,
+            ky,
+            kz,
+            ray.dir[kx] * sz,
+            ray.dir[ky] * sz,
+            sz,
+            std::abs(ray.dir[kx]),
+            std::abs(ray.dir[ky])};
 }
 
 /// Distance and barycentrics of a hit (u weights p1, v weights p2).
@@ -58,7 +67,37 @@ inline bool finish_hit(Real u, Real v, Real w, Real az, Real bz, Real cz, float 
     return true;
 }
 
-/// Intersects the ray with the triangle. Returns true for a hit with tmin <= t <= tmax.
+/// gamma(n) = n u / (1 - n u), u = 2^-24: the relative bound of n rounded float operations.
+constexpr float rounding_gamma(int n) {
+    constexpr float u = 0x1p-24f;
+    return float(n) * u / (1.0f - float(n) * u);
+}
+
+/// A bound on the rounding error of a hit's t, after pbrt-v3 (Pharr, Jakob, Humphreys, section
+/// 3.9.6): a t at or below it may really be <= 0. From the sheared corners, the edge functions
+/// and the shear (shear_x, shear_y = |dir_kx|, |dir_ky|): pbrt bounds the error of x - s_x z by
+/// gamma(5)(max|x| + max|z|) assuming |s_x| <= 1; the s_x factor is kept here, so a far triangle
+/// hit along an axis keeps its tight bound. Evaluated in Real, so the double path keeps its range
+/// at tiny and huge coordinates.
+template <typename Real>
+inline Real hit_distance_error(Real ax, Real ay, Real az, Real bx, Real by, Real bz, Real cx,
+                               Real cy, Real cz, Real u, Real v, Real w, Real shear_x,
+                               Real shear_y) {
+    const Real max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
+    const Real max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
+    const Real max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
+    const Real gamma2 = rounding_gamma(2), gamma3 = rounding_gamma(3), gamma5 = rounding_gamma(5);
+    const Real delta_z = gamma3 * max_z;
+    const Real delta_x = gamma5 * (max_x + shear_x * max_z);
+    const Real delta_y = gamma5 * (max_y + shear_y * max_z);
+    const Real delta_e = 2 * (gamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    const Real max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
+    return 3 * (gamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) / std::abs(u + v + w);
+}
+
+/// Intersects the ray with the triangle. Returns true for a hit with tmin <= t <= tmax whose t
+/// is also conservatively positive (beyond its rounding error bound, as in pbrt), so a ray
+/// spawned from a surface (geometry/offset.h) cannot hit that surface again.
 /// Both faces are hit; a degenerate (zero-area as seen from the ray) triangle is never hit.
 inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                                TriangleHit& out) {
@@ -89,9 +128,14 @@ inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri, floa
         const double ud = double(cx) * double(by) - double(cy) * double(bx);
         const double vd = double(ax) * double(cy) - double(ay) * double(cx);
         const double wd = double(bx) * double(ay) - double(by) * double(ax);
-        return finish_hit(ud, vd, wd, double(az), double(bz), double(cz), tmin, tmax, out);
+        if (!finish_hit(ud, vd, wd, double(az), double(bz), double(cz), tmin, tmax, out))
+            return false;
+        return double(out.t) > hit_distance_error<double>(ax, ay, az, bx, by, bz, cx, cy, cz, ud,
+                                                          vd, wd, r.shear_x, r.shear_y);
     }
-    return finish_hit(u, v, w, az, bz, cz, tmin, tmax, out);
+    if (!finish_hit(u, v, w, az, bz, cz, tmin, tmax, out)) return false;
+    return out.t >
+           hit_distance_error(ax, ay, az, bx, by, bz, cx, cy, cz, u, v, w, r.shear_x, r.shear_y);
 }
 
 /// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight

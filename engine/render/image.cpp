@@ -6,7 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <memory>
+#include <sstream>
+#include <string>
 
 #include "util/error.h"
 
@@ -45,6 +49,71 @@ Image read_png(const std::filesystem::path& path) {
         for (int c = 0; c < 3; ++c)
             image.pixels[i][c] = srgb_to_linear(float(data.get()[3 * i + c]) / 255.0f);
     return image;
+}
+
+void write_pfm(const std::filesystem::path& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    for (int y = image.height - 1; y >= 0; --y)
+        for (int x = 0; x < image.width; ++x)
+            out.write(reinterpret_cast<const char*>(&image.at(x, y)), 3 * sizeof(float));
+    if (!out) throw InputError(path.string() + ": cannot write PFM");
+}
+
+Image read_pfm(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot open");
+    std::string magic;
+    long long width = 0, height = 0;
+    double scale = 0.0;
+    in >> magic >> width >> height >> scale;
+    if (!in || magic != "PF" || width < 1 || height < 1 || width > 65536 || height > 65536 ||
+        !std::isfinite(scale) || scale == 0.0)
+        throw InputError(path.string() + ": not a colour PFM (header 'PF', size, scale)");
+    in.get();  // the single whitespace character before the data
+    Image image{int(width), int(height)};
+    const bool big_endian = scale > 0.0;
+    for (int y = image.height - 1; y >= 0; --y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                std::uint32_t bits = 0;
+                if (!in.read(reinterpret_cast<char*>(&bits), 4))
+                    throw InputError(path.string() + ": PFM data ends early");
+                if (big_endian) bits = __builtin_bswap32(bits);
+                float value;
+                std::memcpy(&value, &bits, 4);
+                image.at(x, y)[c] = value;
+            }
+    return image;
+}
+
+void write_image(const std::filesystem::path& path, const Image& image) {
+    if (path.extension() == ".pfm")
+        write_pfm(path, image);
+    else
+        write_png(path, image);
+}
+
+Image read_image(const std::filesystem::path& path) {
+    return path.extension() == ".pfm" ? read_pfm(path) : read_png(path);
+}
+
+ImageError compare_images(const Image& image, const Image& reference) {
+    if (image.width != reference.width || image.height != reference.height)
+        throw InputError("cannot compare a " + std::to_string(image.width) + "x" +
+                         std::to_string(image.height) + " image with a " +
+                         std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+                         " reference");
+    double squared = 0.0, relative = 0.0;
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(image.pixels[i][c]) - double(reference.pixels[i][c]);
+            const double r = double(reference.pixels[i][c]);
+            squared += d * d;
+            relative += d * d / (r * r + 0.01);
+        }
+    const double n = 3.0 * double(image.pixels.size());
+    return {std::sqrt(squared / n), relative / n};
 }
 
 }  // namespace edacrt

@@ -24,4 +24,22 @@ void write_png(const std::filesystem::path& path, const Image& image);
 /// Reads an 8-bit PNG back into linear RGB. Throws InputError.
 Image read_png(const std::filesystem::path& path);
 
+/// Writes linear float RGB as a little-endian PFM ("PF", rows bottom to top). Throws InputError.
+void write_pfm(const std::filesystem::path& path, const Image& image);
+
+/// Reads a PFM (colour, either byte order). Throws InputError for malformed files.
+Image read_pfm(const std::filesystem::path& path);
+
+/// PFM for a .pfm path (linear float), PNG otherwise (sRGB); throws InputError.
+void write_image(const std::filesystem::path& path, const Image& image);
+Image read_image(const std::filesystem::path& path);
+
+/// Root mean square error over all channels, and the relative MSE (mean of
+/// (x - ref)^2 / (ref^2 + 0.01), channel by channel). Throws InputError for different sizes.
+struct ImageError {
+    double rmse = 0.0;
+    double relative_mse = 0.0;
+};
+ImageError compare_images(const Image& image, const Image& reference);
+
 }  // namespace edacrt

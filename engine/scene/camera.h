@@ -32,6 +32,8 @@ class PinholeProjection {
     /// top-left pixel, (width, height) the bottom-right corner of the image.
     Ray ray(float x, float y) const;
 
+    glm::vec3 eye() const { return eye_; }
+
     /// One ray through each pixel centre, row by row from the top-left.
     std::vector<Ray> pixel_centre_rays() const;
 

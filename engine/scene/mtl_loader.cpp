@@ -57,6 +57,8 @@ class MtlParser {
             material.ks = colour(tokens, keyword);
         } else if (is("Ke")) {
             material.ke = colour(tokens, keyword);
+        } else if (is("Tf")) {
+            material.tf = colour(tokens, keyword);
         } else if (is("Ka")) {
             colour(tokens, keyword);  // ambient is not modelled; common enough to accept quietly
         } else if (is("Ns")) {

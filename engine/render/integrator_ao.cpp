@@ -1,0 +1,49 @@
+// Ambient occlusion: the fraction of a cosine-weighted hemisphere around the geometric normal
+// that is open within ao_distance. One batch of camera rays, then one any-hit batch of
+// ao_samples rays per hit.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "render/wavefront.h"
+
+namespace edacrt {
+
+bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm::vec3> radiance) {
+    std::vector<Ray> rays;
+    wf.camera_rays(begin, end, rays);
+    std::vector<Hit> hits(rays.size());
+    if (!wf.trace_camera(rays, hits)) return false;
+
+    // Compact the hits; their AO rays are consecutive, ao_samples per hit.
+    std::vector<std::uint32_t> hit_pixels;
+    for (std::size_t i = 0; i < hits.size(); ++i)
+        if (hits[i].hit()) hit_pixels.push_back(std::uint32_t(i));
+    const auto n = std::size_t(wf.settings.ao_samples);
+    const float distance =
+        wf.settings.ao_distance > 0.0f ? wf.settings.ao_distance : 0.25f * wf.shading.diagonal;
+    std::vector<Ray> ao_rays(hit_pixels.size() * n);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, hit_pixels.size(), 256), [&](const auto& range) {
+            for (std::size_t h = range.begin(); h != range.end(); ++h) {
+                const std::size_t i = hit_pixels[h];
+                const Surface s = make_surface(wf.scene, rays[i], hits[i]);
+                const PixelSampler sampler = wf.sampler(std::uint32_t(begin + i));
+                for (std::size_t k = 0; k < n; ++k) {
+                    const glm::vec2 u = sampler.get_2d(1, std::uint32_t(k), std::uint32_t(n));
+                    ao_rays[h * n + k] = spawn_ray(s, sample_cosine_hemisphere(s.ng, u), distance);
+                }
+            }
+        });
+    std::vector<Hit> ao_hits(ao_rays.size());
+    if (!wf.trace(ao_rays, ao_hits, Query::any)) return false;
+
+    std::fill(radiance.begin(), radiance.end(), glm::vec3(0.0f));
+    for (std::size_t h = 0; h < hit_pixels.size(); ++h) {
+        std::size_t open = 0;
+        for (std::size_t k = 0; k < n; ++k) open += !ao_hits[h * n + k].hit();
+        radiance[hit_pixels[h]] = glm::vec3(float(open) / float(n));
+    }
+    return true;
+}
+
+}  // namespace edacrt

@@ -1,0 +1,68 @@
+#include "render/render_settings.h"
+
+#include <cmath>
+#include <string>
+
+#include "util/error.h"
+
+namespace edacrt {
+
+void validate(const RenderSettings& s) {
+    const auto fail = [](const std::string& what) { throw InputError(what); };
+    if (s.width < 1 || s.width > 16384 || s.height < 1 || s.height > 16384)
+        fail("image size must be 1..16384 pixels per side, got " + std::to_string(s.width) + "x" +
+             std::to_string(s.height));
+    if (s.max_depth < 0 || s.max_depth > 1024)
+        fail("max depth must be 0..1024, got " + std::to_string(s.max_depth));
+    if (s.roulette_depth < 0) fail("roulette depth must be >= 0");
+    if (s.ao_samples < 1 || s.ao_samples > 1024)
+        fail("ao samples must be 1..1024, got " + std::to_string(s.ao_samples));
+    if (!std::isfinite(s.ao_distance) || s.ao_distance < 0.0f)
+        fail("ao distance must be finite and >= 0 (0: a quarter of the scene size)");
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(s.sky[c]) || s.sky[c] < 0.0f)
+            fail("sky radiance must be finite and >= 0");
+    if (s.tile_pixels < 1) fail("tile size must be at least 1 pixel");
+}
+
+Integrator parse_integrator(std::string_view name) {
+    for (Integrator i : {Integrator::primary, Integrator::ao, Integrator::path})
+        if (integrator_name(i) == name) return i;
+    throw InputError("unknown integrator '" + std::string(name) + "' (known: primary, ao, path)");
+}
+
+std::string_view integrator_name(Integrator integrator) {
+    switch (integrator) {
+        case Integrator::primary:
+            return "primary";
+        case Integrator::ao:
+            return "ao";
+        case Integrator::path:
+            return "path";
+    }
+    return "?";
+}
+
+PrimaryShading parse_primary_shading(std::string_view name) {
+    for (PrimaryShading s : {PrimaryShading::eye_light, PrimaryShading::normal,
+                             PrimaryShading::albedo, PrimaryShading::depth})
+        if (primary_shading_name(s) == name) return s;
+    throw InputError("unknown primary shading '" + std::string(name) +
+                     "' (known: eye-light, normal, albedo, depth)");
+}
+
+std::string_view primary_shading_name(PrimaryShading shading) {
+    switch (shading) {
+        case PrimaryShading::eye_light:
+            return "eye-light";
+        case PrimaryShading::normal:
+            return "normal";
+        case PrimaryShading::albedo:
+            return "albedo";
+        case PrimaryShading::depth:
+            return "depth";
+    }
+    return "?";
+}
+
+}  // namespace edacrt

@@ -1,0 +1,41 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <string>
+#include <string_view>
+
+namespace edacrt {
+
+/// primary: one camera ray per sample, shaded for debugging; ao: ambient occlusion; path:
+/// unidirectional path tracing with next-event estimation and MIS.
+enum class Integrator { primary, ao, path };
+
+/// What the primary integrator shows: eye-light (Lambertian lit from the eye), the shading
+/// normal (0.5 n + 0.5), the diffuse albedo, or depth (1 near, 0 at the far end of the scene).
+enum class PrimaryShading { eye_light, normal, albedo, depth };
+
+struct RenderSettings {
+    int width = 512;
+    int height = 512;
+    Integrator integrator = Integrator::path;
+    PrimaryShading primary = PrimaryShading::eye_light;
+    int max_depth = 8;         // path: bounces after the camera ray (0: emitters seen directly)
+    int roulette_depth = 3;    // path: Russian roulette from this bounce on
+    int ao_samples = 4;        // ao: rays per hit
+    float ao_distance = 0.0f;  // ao: occluders farther than this do not count (0: 1/4 scene size)
+    glm::vec3 sky{1.0f};       // radiance of the sky seen by path and ao when nothing is hit,
+                               // used by `path` only when the scene has no emitters
+    std::uint32_t seed = 0;
+    std::size_t tile_pixels = std::size_t(1) << 18;  // pixels traced as one wavefront
+};
+
+/// Throws InputError naming the first setting out of range.
+void validate(const RenderSettings& settings);
+
+Integrator parse_integrator(std::string_view name);
+std::string_view integrator_name(Integrator integrator);
+PrimaryShading parse_primary_shading(std::string_view name);
+std::string_view primary_shading_name(PrimaryShading shading);
+
+}  // namespace edacrt

@@ -1,0 +1,76 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace edacrt {
+namespace {
+
+const Camera& validated(const Camera& camera) {
+    validate(camera);
+    return camera;
+}
+
+const RenderSettings& validated(const RenderSettings& settings) {
+    validate(settings);
+    return settings;
+}
+
+}  // namespace
+
+Renderer::Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
+                   const RenderSettings& settings)
+    : scene_(scene),
+      tracer_(tracer),
+      settings_(validated(settings)),
+      projection_(validated(camera), settings.width, settings.height),
+      shading_(scene),
+      film_(settings.width, settings.height),
+      samples_(std::size_t(settings.width) * std::size_t(settings.height)) {}
+
+bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary_detail) {
+    const auto start = std::chrono::steady_clock::now();
+    PassStats stats;
+    if (primary_detail) {
+        primary_detail->levels.clear();
+        primary_detail->rays.clear();
+    }
+    Wavefront wf{scene_,    shading_,       tracer_,
+                 settings_, projection_,    std::uint32_t(film_.passes()),
+                 cancel,    primary_detail, stats};
+    const std::size_t pixels = samples_.size();
+    for (std::size_t begin = 0; begin < pixels; begin += settings_.tile_pixels) {
+        const std::size_t end = std::min(pixels, begin + settings_.tile_pixels);
+        const std::span<glm::vec3> tile(samples_.data() + begin, end - begin);
+        bool done = false;
+        switch (settings_.integrator) {
+            case Integrator::primary:
+                done = render_primary(wf, begin, end, tile);
+                break;
+            case Integrator::ao:
+                done = render_ao(wf, begin, end, tile);
+                break;
+            case Integrator::path:
+                done = render_path(wf, begin, end, tile);
+                break;
+        }
+        if (!done) return false;
+    }
+    for (glm::vec3& sample : samples_)
+        if (!std::isfinite(sample.x) || !std::isfinite(sample.y) || !std::isfinite(sample.z)) {
+            sample = glm::vec3(0.0f);
+            ++stats.dropped_samples;
+        }
+    film_.add_pass(samples_);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    last_pass_ = stats;
+    total_ += stats;
+    return true;
+}
+
+void Renderer::reset() {
+    film_.reset();
+    last_pass_ = total_ = PassStats{};
+}
+
+}  // namespace edacrt

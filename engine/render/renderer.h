@@ -1,0 +1,53 @@
+#pragma once
+// The progressive wavefront renderer: each pass adds one sample per pixel to the film, tile by
+// tile, every bounce of a tile traced as one batch by the chosen Tracer.
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/film.h"
+#include "render/render_settings.h"
+#include "render/shading_scene.h"
+#include "render/wavefront.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace edacrt {
+
+class Renderer {
+  public:
+    /// `tracer` must have been given `scene` (set_scene); both must outlive the renderer.
+    /// Throws InputError for bad settings or camera.
+    Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
+             const RenderSettings& settings);
+
+    /// Renders the next pass into the film. Returns false, leaving the film as it was, when
+    /// `cancel` became true (it is checked before every batch). With `primary_detail`, also
+    /// records the per-level and per-pixel statistics of the pass's camera rays (untimed).
+    bool render_pass(const std::atomic<bool>* cancel = nullptr,
+                     TraceDetail* primary_detail = nullptr);
+
+    /// Starts over (the next pass is sample 0 again).
+    void reset();
+
+    const Film& film() const { return film_; }
+    const RenderSettings& settings() const { return settings_; }
+    const PassStats& last_pass() const { return last_pass_; }
+    const PassStats& total() const { return total_; }
+    /// MTL settings the renderer approximates (to be reported once).
+    const std::vector<std::string>& notes() const { return shading_.notes; }
+
+  private:
+    const Scene& scene_;
+    Tracer& tracer_;
+    RenderSettings settings_;
+    PinholeProjection projection_;
+    ShadingScene shading_;
+    Film film_;
+    PassStats last_pass_, total_;
+    std::vector<glm::vec3> samples_;  // the pass being rendered
+};
+
+}  // namespace edacrt

@@ -1,0 +1,70 @@
+#pragma once
+// What an integrator works with while it renders one tile of one pass: the scene, the tracer
+// (every batch of rays goes through trace()), the sample generator and the statistics.
+#include <atomic>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <span>
+#include <vector>
+
+#include "render/render_settings.h"
+#include "render/sampler.h"
+#include "render/shading_scene.h"
+#include "scene/camera.h"
+#include "trace/tracer.h"
+
+namespace edacrt {
+
+/// Counters of one pass (or, summed, of a whole render).
+struct PassStats {
+    TraceStats trace;                   // summed over all batches
+    std::uint64_t batches = 0;          // Tracer::trace calls
+    double trace_seconds = 0.0;         // inside Tracer::trace
+    double seconds = 0.0;               // the whole pass
+    std::uint64_t dropped_samples = 0;  // non-finite radiance replaced by black
+
+    PassStats& operator+=(const PassStats& o) {
+        trace += o.trace;
+        batches += o.batches;
+        trace_seconds += o.trace_seconds;
+        seconds += o.seconds;
+        dropped_samples += o.dropped_samples;
+        return *this;
+    }
+};
+
+struct Wavefront {
+    const Scene& scene;
+    const ShadingScene& shading;
+    Tracer& tracer;
+    const RenderSettings& settings;
+    const PinholeProjection& projection;
+    std::uint32_t pass;               // the sample index of every pixel in this pass
+    const std::atomic<bool>* cancel;  // checked before every batch
+    TraceDetail* primary_detail;      // when set, statistics of the camera rays are appended
+    PassStats& stats;
+
+    bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+
+    PixelSampler sampler(std::uint32_t pixel) const {
+        return PixelSampler(settings.seed, pixel, pass);
+    }
+
+    /// Camera rays of pixels [begin, end), jittered within the pixel (sample pair 0).
+    void camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>& rays) const;
+
+    /// Traces one batch (timed). Returns false, tracing nothing, when cancelled.
+    bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);
+
+    /// trace() for camera rays: also records primary_detail from an untimed second pass.
+    bool trace_camera(std::span<const Ray> rays, std::span<Hit> hits);
+};
+
+// The integrators: each renders pixels [begin, end) of the pass into radiance[0, end - begin)
+// and returns false when cancelled.
+bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
+                    std::span<glm::vec3> radiance);
+bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm::vec3> radiance);
+bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm::vec3> radiance);
+
+}  // namespace edacrt

@@ -1,0 +1,98 @@
+// edacrt render: integrators, PFM output, --reference, --time-budget, bad input.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "render/image.h"
+
+namespace edacrt {
+namespace {
+
+class RenderCli : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = std::filesystem::temp_directory_path() /
+               ("edacrt_render_cli_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    std::filesystem::path dir_;
+};
+
+const std::string kSmall = "render --scene builtin:cornell --width 32 --height 24 ";
+
+TEST_F(RenderCli, EveryIntegratorWritesAFiniteFloatImage) {
+    for (const std::string integrator : {"primary", "ao", "path"}) {
+        const auto result = test::run_cli(kSmall + "--spp 2 --integrator " + integrator +
+                                          " --out " + path(integrator + ".pfm"));
+        ASSERT_EQ(result.exit_code, 0) << result.output;
+        const Image image = read_pfm(path(integrator + ".pfm"));
+        ASSERT_EQ(image.width, 32);
+        ASSERT_EQ(image.height, 24);
+        double sum = 0.0;
+        for (const glm::vec3& p : image.pixels) {
+            ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+            sum += double(p.x + p.y + p.z);
+        }
+        EXPECT_GT(sum, 0.0) << integrator;
+    }
+}
+
+TEST_F(RenderCli, ReferenceErrorIsReportedAfterEveryPassAndFalls) {
+    ASSERT_EQ(test::run_cli(kSmall + "--spp 64 --out " + path("ref.pfm")).exit_code, 0);
+    const auto result = test::run_cli(kSmall + "--spp 16 --seed 5 --reference " + path("ref.pfm") +
+                                      " --stats " + path("stats.json") + " --out " + path("x.png"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto stats = nlohmann::json::parse(std::ifstream(path("stats.json")));
+    const auto& passes = stats["passes"];
+    ASSERT_EQ(passes.size(), 16u);
+    EXPECT_LT(passes[15]["rmse"].get<double>(), passes[0]["rmse"].get<double>());
+    EXPECT_NE(result.output.find("rmse"), std::string::npos);
+}
+
+TEST_F(RenderCli, TimeBudgetStopsAProgressiveRender) {
+    const auto result = test::run_cli(kSmall + "--time-budget 0.3 --stats " + path("s.json") +
+                                      " --out " + path("x.png"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto stats = nlohmann::json::parse(std::ifstream(path("s.json")));
+    EXPECT_GE(stats["spp"].get<int>(), 1);
+    EXPECT_LT(stats["render_seconds"].get<double>(), 5.0);  // stopped; not a speed assertion
+}
+
+TEST_F(RenderCli, BadInputFailsWithAClearMessage) {
+    std::ofstream(path("bad.pfm")) << "P6\n1 1\n255\n";
+    std::ofstream(path("short.pfm")) << "PF\n32 24\n-1.0\n" << std::string(100, '\0');
+    ASSERT_EQ(test::run_cli(kSmall + "--spp 1 --out " + path("ref.pfm")).exit_code, 0);
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {kSmall + "--integrator magic", "unknown integrator 'magic'"},
+        {kSmall + "--primary magic --integrator primary", "unknown primary shading"},
+        {kSmall + "--max-depth -1", "max depth"},
+        {kSmall + "--ao-samples 0", "ao samples"},
+        {kSmall + "--time-budget -1", "--time-budget"},
+        {kSmall + "--tone-map magic", "unknown tone map"},
+        {kSmall + "--embree-mode magic", "unknown Embree mode"},
+        {kSmall + "--reference " + path("bad.pfm"), "not a colour PFM"},
+        {kSmall + "--reference /no/such.pfm", "cannot open"},
+        {kSmall + "--reference " + path("short.pfm"), "PFM data ends early"},
+        {"render --scene builtin:cornell --width 16 --height 16 --reference " + path("ref.pfm"),
+         "the reference is 32x24"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(c.args + " --out " + path("x.png"));
+        EXPECT_NE(result.exit_code, 0) << c.args;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
+                                                                    << result.output;
+    }
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -15,12 +15,14 @@ int main(int argc, char** argv) {
     const auto run_render = edacrt::cli::add_render_command(app);
     const auto run_trace = edacrt::cli::add_trace_command(app);
     const auto run_camera_rays = edacrt::cli::add_camera_rays_command(app);
+    const auto run_accuracy = edacrt::cli::add_accuracy_command(app);
     CLI11_PARSE(app, argc, argv);
 
     try {
         if (app.got_subcommand("render")) run_render();
         if (app.got_subcommand("trace")) run_trace();
         if (app.got_subcommand("camera-rays")) run_camera_rays();
+        if (app.got_subcommand("accuracy")) run_accuracy();
     } catch (const edacrt::InputError& e) {
         std::cerr << "edacrt: error: " << e.what() << "\n";
         return 1;

@@ -19,7 +19,8 @@ enum class Method { naive, edacrt, dacrt, bvh, embree };
 
 /// How the Embree baseline hands rays to Embree: one at a time, in packets of 8, or as streams.
 enum class EmbreeMode { single, packet8, stream };
-inline constexpr EmbreeMode kDefaultEmbreeMode = EmbreeMode::packet8;  // fastest on camera rays (README)
+inline constexpr EmbreeMode kDefaultEmbreeMode =
+    EmbreeMode::packet8;  // fastest on camera rays (README)
 
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };

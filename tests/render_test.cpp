@@ -123,7 +123,7 @@ TEST(Determinism, EmbreeRendersTheSameImageWithinRounding) {
     // in the last bits: the same image up to a few paths that diverge.
     const Image ours = render_cornell(Method::naive, Integrator::path, 3, 8);
     const Image embree = render_cornell(Method::embree, Integrator::path, 3, 8);
-    EXPECT_LT(compare_images(embree, ours).rmse, 0.02);
+    EXPECT_LT(compare_images(embree, ours).rmse, 1e-3);
 #else
     GTEST_SKIP() << "built without Embree";
 #endif
@@ -184,10 +184,7 @@ TEST_P(SelfIntersection, GrazingRaysNeverHitTheirOwnTriangle) {
     for (Method method : {Method::naive, Method::edacrt, Method::dacrt, Method::bvh})
         tracers.push_back(make_tracer(method));
 #ifdef EDACRT_HAS_EMBREE
-    // Embree has no conservative t test: from an exact point on a coordinate plane it reports
-    // the ray's own triangle at t = 0 (a known limit of its kernel), so only the sphere.
-    if (std::string(GetParam()).find("sphere") != std::string::npos)
-        tracers.push_back(make_tracer(Method::embree));
+    tracers.push_back(make_tracer(Method::embree));  // through its candidate filter
 #endif
     for (const auto& tracer : tracers) tracer->set_scene(scene);
     std::vector<Ray> outward, inward;

@@ -43,8 +43,9 @@ inline glm::vec3 offset_ray_origin(const SurfacePoint& point, glm::vec3 n, glm::
     return out;
 }
 
-/// tmin of spawned rays: the smallest positive float, so a hit computed at t = 0 (the ray's
-/// own surface, rounded) is rejected, at no scale-dependent cost.
-inline constexpr float kSpawnTmin = std::numeric_limits<float>::denorm_min();
+/// tmin of spawned rays: the smallest positive normal float, so a hit computed at t = 0 (the
+/// ray's own surface, rounded) is rejected, at no scale-dependent cost. Not a denormal:
+/// Embree's threads run with denormals-are-zero, which would read it as 0.
+inline constexpr float kSpawnTmin = std::numeric_limits<float>::min();
 
 }  // namespace edacrt

@@ -14,23 +14,43 @@
 namespace edacrt {
 namespace {
 
-/// An intersect context that also receives the occluders an occlusion query accepted
-/// (rtcOccluded* itself reports only whether a ray is blocked). Rays carry their index in the
-/// batch as their id, so the filter finds each lane's hit in every mode (1, 8, stream).
-struct OcclusionContext {
+/// The context of every query: a filter (called for each candidate hit Embree finds) accepts
+/// only hits our own watertight test accepts too. Embree has no conservative t test, so from
+/// an exact point on a coordinate plane it reports the ray's own triangle at t = 0; with this
+/// filter, rays spawned from surfaces (geometry/offset.h, tmin > 0) do not self-intersect. For
+/// occlusion queries the filter also records the occluder (rtcOccluded* reports only whether a ray
+/// is blocked). Rays carry their index in the batch as their id, so the filter finds each lane's
+/// hit in every mode (1, 8, stream).
+struct FilterContext {
     RTCIntersectContext base;  // first member: Embree passes &base back to the filter
-    Hit* hits;
+    const Triangle* triangles;
+    Hit* occluders;  // null for closest-hit queries
 };
 
-void record_occluders(const RTCFilterFunctionNArguments* args) {
-    const auto* context = reinterpret_cast<const OcclusionContext*>(args->context);
-    for (unsigned lane = 0; lane < args->N; ++lane) {
+void filter_candidates(const RTCFilterFunctionNArguments* args) {
+    const auto* context = reinterpret_cast<const FilterContext*>(args->context);
+    const unsigned n = args->N;
+    for (unsigned lane = 0; lane < n; ++lane) {
         if (args->valid[lane] != -1) continue;
+        const auto prim = RTCHitN_primID(args->hit, n, lane);
         // During a filter call the candidate's distance is the ray's tfar.
-        context->hits[RTCRayN_id(args->ray, args->N, lane)] = {
-            RTCRayN_tfar(args->ray, args->N, lane),
-            std::int32_t(RTCHitN_primID(args->hit, args->N, lane)),
-            RTCHitN_u(args->hit, args->N, lane), RTCHitN_v(args->hit, args->N, lane)};
+        const float t = RTCRayN_tfar(args->ray, n, lane);
+        const Ray ray{{RTCRayN_org_x(args->ray, n, lane), RTCRayN_org_y(args->ray, n, lane),
+                       RTCRayN_org_z(args->ray, n, lane)},
+                      {RTCRayN_dir_x(args->ray, n, lane), RTCRayN_dir_y(args->ray, n, lane),
+                       RTCRayN_dir_z(args->ray, n, lane)},
+                      RTCRayN_tnear(args->ray, n, lane),
+                      kInfinity};
+        TriangleHit ours;
+        if (!intersect_triangle(make_watertight_ray(ray), context->triangles[prim], ray.tmin,
+                                kInfinity, ours)) {
+            args->valid[lane] = 0;  // reject: Embree goes on looking
+            continue;
+        }
+        if (context->occluders)
+            context->occluders[RTCRayN_id(args->ray, n, lane)] = {t, std::int32_t(prim),
+                                                                  RTCHitN_u(args->hit, n, lane),
+                                                                  RTCHitN_v(args->hit, n, lane)};
     }
 }
 
@@ -126,16 +146,21 @@ void EmbreeTracer::set_scene(const Scene& scene) {
     rtcAttachGeometry(scene_, geometry);
     rtcReleaseGeometry(geometry);
     rtcCommitScene(scene_);
+    triangles_ = gather_triangles(scene);
 }
 
 void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                std::size_t begin, std::size_t end) {
-    OcclusionContext context;
+    FilterContext context;
     rtcInitIntersectContext(&context.base);
-    if (query == Query::any) {
-        context.base.filter = record_occluders;
-        context.hits = hits.data();
-    }
+    // Camera rays (tmin = 0) never start on a surface: spare them the filter's cost (+40% for
+    // packets). Spawned rays carry tmin > 0 (kSpawnTmin); occlusion needs the filter anyway.
+    const bool spawned =
+        std::any_of(rays.begin() + std::ptrdiff_t(begin), rays.begin() + std::ptrdiff_t(end),
+                    [](const Ray& ray) { return ray.tmin > 0.0f; });
+    context.base.filter = query == Query::any || spawned ? filter_candidates : nullptr;
+    context.triangles = triangles_.data();
+    context.occluders = query == Query::any ? hits.data() : nullptr;
     for (std::size_t i = begin; i != end; ++i) hits[i] = Hit{};
     switch (mode_) {
         case EmbreeMode::single:

@@ -1,13 +1,16 @@
 #pragma once
 #include <embree3/rtcore.h>
 
+#include <vector>
+
 #include "trace/tracer.h"
 
 namespace edacrt {
 
 /// The industrial reference: Embree 3, its BVH built in set_scene() (per frame) with the robust
 /// (watertight) flag, traced over ranges of rays in parallel with single rays (rtcIntersect1),
-/// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says.
+/// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says. A filter accepts
+/// only candidates our watertight test confirms, so spawned rays do not self-intersect.
 class EmbreeTracer final : public Tracer {
   public:
     explicit EmbreeTracer(EmbreeMode mode = kDefaultEmbreeMode);
@@ -27,6 +30,7 @@ class EmbreeTracer final : public Tracer {
                      std::size_t end);
 
     EmbreeMode mode_;
+    std::vector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
 };

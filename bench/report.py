@@ -176,7 +176,8 @@ def markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows
         f"`edacrt accuracy`: {args.accuracy_rays} rays per set, closest hit, compared with a "
         "double-precision brute-force reference. *hit diff*: hit/miss differs; *tri diff*: "
         "another triangle, not at the same distance (ties on shared edges are not counted); "
-        "relative |t| error over rays both hit. Rays from surfaces are spawned as the renderer "
+        "relative |t| error over the rays where both hit the same surface. The reference "
+        "treats a t within double rounding of 0 (2^-40 of the coordinates) as no hit. Rays from surfaces are spawned as the renderer "
         "spawns them (offset past the hit point's error bound); grazing ones leave at 1e-6 to "
         "1e-1 rad. Mrays/s are for batches of this size (small for the divide-and-conquer "
         "methods).",
@@ -218,6 +219,8 @@ def main():
     parser.add_argument("--build", type=Path, default=ROOT / "build")
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "bench")
     parser.add_argument("--quick", action="store_true", help="tiny budgets, to check it runs")
+    parser.add_argument("--only", choices=["convergence", "accuracy", "seed"], action="append",
+                        help="re-measure only these sections (others come from out/bench)")
     args = parser.parse_args()
     args.size, args.budget, args.reference_spp = (64, 1.0, 64) if args.quick else (256, 15.0, 2048)
     args.accuracy_rays, args.repeats = (2000, 1) if args.quick else (40000, 3)
@@ -228,19 +231,36 @@ def main():
     figures_dir.mkdir(parents=True, exist_ok=True)
     started = time.time()
 
-    curves_by_scene, figures = {}, {"convergence": {}}
-    for name, scene, flags in SCENES:
-        ref = reference(args.build, args.out, name, scene, flags, args)
-        curves_by_scene[name] = convergence(args.build, args.out, name, scene, flags, ref, args)
-        figures["convergence"][name] = plot_convergence(figures_dir, name, curves_by_scene[name],
-                                                        args)
-    accuracy_by_scene = {}
-    for name, scene, _ in SCENES:
-        print(f"accuracy {name}", flush=True)
-        accuracy_by_scene[name] = accuracy(args.build, args.out, name, scene, args)
+    def section(key, measure):
+        """Measures a section, or reuses its cached results when --only names others."""
+        cache = args.out / f"results_{key}.json"
+        if args.only and key not in args.only and cache.exists():
+            return json.loads(cache.read_text())
+        results = measure()
+        cache.write_text(json.dumps(results))
+        return results
+
+    def measure_convergence():
+        curves = {}
+        for name, scene, flags in SCENES:
+            ref = reference(args.build, args.out, name, scene, flags, args)
+            curves[name] = convergence(args.build, args.out, name, scene, flags, ref, args)
+        return curves
+
+    def measure_accuracy():
+        results = {}
+        for name, scene, _ in SCENES:
+            print(f"accuracy {name}", flush=True)
+            results[name] = accuracy(args.build, args.out, name, scene, args)
+        return results
+
+    curves_by_scene = section("convergence", measure_convergence)
+    figures = {"convergence": {name: plot_convergence(figures_dir, name, curves, args)
+                               for name, curves in curves_by_scene.items()}}
+    accuracy_by_scene = section("accuracy", measure_accuracy)
     figures["accuracy"] = plot_accuracy(figures_dir, accuracy_by_scene)
     print("seed comparison", flush=True)
-    seed_rows = seed_comparison(args.build, args.out, args)
+    seed_rows = section("seed", lambda: seed_comparison(args.build, args.out, args))
 
     report = markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started)
     (ROOT / "bench" / "README.md").write_text(report)

@@ -107,15 +107,18 @@ Accuracy measure(Tracer& tracer, const std::vector<Triangle>& triangles, const R
             continue;
         }
         if (!hits[i].hit()) continue;
+        if (hits[i].prim != ref.prim) {
+            // Not a tie: the reported triangle is hit farther away than the reference's.
+            const auto t = intersect_double(rays[i], triangles[std::size_t(hits[i].prim)]);
+            if (!t || std::abs(*t - ref.t) > 1e-7 * ref.t) {
+                ++a.triangle_mismatch;
+                continue;  // a different hit: its t is not an error of the same hit's t
+            }
+        }
         ++a.both_hit;
         const double error = std::abs(double(hits[i].t) - ref.t) / ref.t;
         a.max_relative_t_error = std::max(a.max_relative_t_error, error);
         a.sum_relative_t_error += error;
-        if (hits[i].prim != ref.prim) {
-            // Not a tie: the reported triangle is hit farther away than the reference's.
-            const auto t = intersect_double(rays[i], triangles[std::size_t(hits[i].prim)]);
-            if (!t || std::abs(*t - ref.t) > 1e-7 * ref.t) ++a.triangle_mismatch;
-        }
     }
     return a;
 }

@@ -23,6 +23,8 @@ struct EdacrtParams {
     bool filter_skip = true;      // skip filtering when alpha > 1 - C_bv/(n C_child)
     bool sampling = true;         // off: DACRT's surface-area ratios
     std::uint32_t seed = 1;       // of the per-node ray sampling
+
+    bool operator==(const EdacrtParams&) const = default;
 };
 
 /// Parameters of the DACRT baseline: `params` with sampling and filter skipping off.

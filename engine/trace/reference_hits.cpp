@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 
 namespace edacrt {
@@ -20,7 +21,13 @@ std::optional<double> intersect_double(const Ray& ray, const Triangle& tri) {
     const double v = glm::dot(dir, q) / det;
     if (v < 0.0 || u + v > 1.0) return std::nullopt;
     const double t = glm::dot(e2, q) / det;
-    if (!(t >= double(ray.tmin) && t <= double(ray.tmax)) || t <= 0.0) return std::nullopt;
+    // Within double rounding of 0 (2^-40 of the coordinates, far below float resolution) is
+    // not a hit: a ray spawned just off its own triangle must not "hit" it at t = 1e-13.
+    const double scale =
+        std::max({glm::length(glm::dvec3(ray.org)), glm::length(p0),
+                  glm::length(glm::dvec3(tri.p1)), glm::length(glm::dvec3(tri.p2))});
+    const double zero = 0x1p-40 * scale / glm::length(dir);
+    if (!(t >= double(ray.tmin) && t <= double(ray.tmax)) || t <= zero) return std::nullopt;
     return t;
 }
 

@@ -1,0 +1,33 @@
+#pragma once
+// Draws the current image (render or heat map) behind the UI with the shaders in shaders/.
+// Uploads a texture only when the image changes.
+#include <glad/gl.h>
+
+#include <vector>
+
+#include "render/image.h"
+
+namespace edacrt::app {
+
+class Display {
+  public:
+    Display();  // needs a current OpenGL 3.3 context
+    ~Display();
+    Display(const Display&) = delete;
+    Display& operator=(const Display&) = delete;
+
+    void upload_render(const Image& image);
+    void upload_heat(const std::vector<float>& values, int width, int height);
+
+    struct Tone {
+        float exposure = 0.0f;
+        int tone_map = 0;  // 0 clamp, 1 Reinhard, 2 ACES
+    };
+    /// Draws the image over the whole viewport.
+    void draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const;
+
+  private:
+    GLuint program_ = 0, vertex_array_ = 0, render_texture_ = 0, heat_texture_ = 0;
+};
+
+}  // namespace edacrt::app

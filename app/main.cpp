@@ -1,0 +1,24 @@
+// edacrt_viewer: the interactive viewer. See README.md ("The viewer").
+#include <CLI/CLI.hpp>
+
+#include "viewer.h"
+
+int main(int argc, char** argv) {
+    edacrt::app::ViewerOptions o;
+    CLI::App app{"EDACRT Studio viewer: progressive rendering with divide-and-conquer ray tracing",
+                 "edacrt_viewer"};
+    app.add_option("scene", o.scene, "OBJ file or builtin:NAME")->capture_default_str();
+    app.add_option("--method", o.method, "edacrt|dacrt|bvh|embree|naive")->capture_default_str();
+    app.add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
+    app.add_option("--spp", o.spp, "samples per pixel to accumulate")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+    app.add_option("--width", o.width, "window width")->check(CLI::Range(64, 16384));
+    app.add_option("--height", o.height, "window height")->check(CLI::Range(64, 16384));
+    app.add_option("--frames", o.frames, "quit after this many frames (0: run until closed)")
+        ->check(CLI::Range(0, 100000000));
+    app.add_option("--screenshot", o.screenshot, "save the window as PNG before quitting");
+    app.add_option("--script", o.script, "run UI actions from a file (see app/script.h)");
+    CLI11_PARSE(app, argc, argv);
+    return edacrt::app::run_viewer(o);
+}

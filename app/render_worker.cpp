@@ -1,0 +1,146 @@
+#include "render_worker.h"
+
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "render/renderer.h"
+
+namespace edacrt::app {
+namespace {
+
+bool same_tracer(const RenderRequest& a, const RenderRequest& b) {
+    return a.scene == b.scene && a.method == b.method && a.embree_mode == b.embree_mode &&
+           a.params == b.params;
+}
+
+}  // namespace
+
+RenderWorker::RenderWorker() : thread_([this] { run(); }) {}
+
+RenderWorker::~RenderWorker() {
+    {
+        std::lock_guard lock(mutex_);
+        quit_ = true;
+        cancel_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+std::uint64_t RenderWorker::submit(RenderRequest request) {
+    std::uint64_t id;
+    {
+        std::lock_guard lock(mutex_);
+        pending_ = std::make_shared<const RenderRequest>(std::move(request));
+        id = ++submitted_;
+        cancel_ = true;  // under the lock, so it cannot cancel the request it announces
+    }
+    wake_.notify_all();
+    return id;
+}
+
+std::shared_ptr<const Frame> RenderWorker::latest() const {
+    std::lock_guard lock(mutex_);
+    return latest_;
+}
+
+void RenderWorker::publish(std::shared_ptr<const Frame> frame) {
+    {
+        std::lock_guard lock(mutex_);
+        latest_ = std::move(frame);
+    }
+    ++published_;
+}
+
+void RenderWorker::run() {
+    std::shared_ptr<const RenderRequest> current, traced;  // traced: what `tracer` was built for
+    std::uint64_t id = 0;
+    std::unique_ptr<Tracer> tracer;
+    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<tbb::task_arena> arena;
+    std::shared_ptr<const TraceDetail> detail;
+    double seconds = 0.0;
+    bool fresh = false;  // a request not yet started
+    for (;;) {
+        {
+            std::unique_lock lock(mutex_);
+            wake_.wait(lock, [&] {
+                return quit_ || pending_ ||
+                       (current && !current->paused &&
+                        (fresh || (renderer && renderer->film().passes() < current->spp_target)));
+            });
+            if (quit_) return;
+            if (pending_) {
+                current = std::move(pending_);
+                pending_.reset();
+                id = submitted_;
+                cancel_ = false;
+                fresh = true;
+            }
+        }
+        const RenderRequest& request = *current;
+        try {
+            if (fresh) {
+                fresh = false;
+                renderer.reset();
+                detail.reset();
+                seconds = 0.0;
+                const int all = tbb::task_arena::automatic;  // a copy: no ODR use of the member
+                arena =
+                    std::make_unique<tbb::task_arena>(request.threads > 0 ? request.threads : all);
+                if (!tracer || !traced || !same_tracer(*traced, request)) {
+                    tracer.reset();
+                    tracer = make_tracer(request.method, request.params, request.embree_mode);
+                    arena->execute([&] { tracer->set_scene(*request.scene); });
+                    traced = current;
+                }
+                if (request.preview_scale > 1) {
+                    RenderSettings small = request.settings;
+                    small.width = std::max(1, small.width / request.preview_scale);
+                    small.height = std::max(1, small.height / request.preview_scale);
+                    Renderer preview(*request.scene, *tracer, request.camera, small);
+                    bool done = false;
+                    arena->execute([&] { done = preview.render_pass(&cancel_); });
+                    if (!done) continue;
+                    auto frame = std::make_shared<Frame>();
+                    frame->request = id;
+                    frame->preview = true;
+                    frame->image = preview.film().mean();
+                    frame->spp = 1;
+                    publish(std::move(frame));
+                }
+                renderer = std::make_unique<Renderer>(*request.scene, *tracer, request.camera,
+                                                      request.settings);
+            }
+            auto captured =
+                renderer->film().passes() == 0 ? std::make_shared<TraceDetail>() : nullptr;
+            const auto start = std::chrono::steady_clock::now();
+            bool done = false;
+            arena->execute([&] { done = renderer->render_pass(&cancel_, captured.get()); });
+            if (!done) continue;  // cancelled: a new request is waiting
+            seconds +=
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (captured) detail = std::move(captured);
+            auto frame = std::make_shared<Frame>();
+            frame->request = id;
+            frame->image = renderer->film().mean();
+            frame->spp = renderer->film().passes();
+            frame->seconds = seconds;
+            frame->total = renderer->total();
+            frame->detail = detail;
+            publish(std::move(frame));
+        } catch (const std::exception& e) {
+            auto frame = std::make_shared<Frame>();
+            frame->request = id;
+            frame->error = e.what();
+            publish(std::move(frame));
+            current.reset();
+            renderer.reset();
+            tracer.reset();
+            traced.reset();
+        }
+    }
+}
+
+}  // namespace edacrt::app

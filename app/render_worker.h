@@ -1,0 +1,80 @@
+#pragma once
+// The viewer's render thread. The UI submits a RenderRequest (a full copy of everything that
+// defines the image); the worker cancels the pass in flight (the renderer checks before every
+// batch), renders a low-resolution preview pass, then accumulates full-resolution passes and
+// publishes each as a Frame. The UI never waits for the renderer: submit() and latest() only
+// take a mutex held for a pointer swap.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "render/image.h"
+#include "render/render_settings.h"
+#include "render/wavefront.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace edacrt::app {
+
+struct RenderRequest {
+    std::shared_ptr<const Scene> scene;
+    Camera camera;
+    Method method = Method::edacrt;
+    EdacrtParams params;
+    EmbreeMode embree_mode = kDefaultEmbreeMode;
+    RenderSettings settings;  // width and height: the full resolution
+    int spp_target = 1024;
+    int threads = 0;        // 0: all
+    int preview_scale = 4;  // the first pass at 1/preview_scale of the resolution (1: none)
+    bool paused = false;
+};
+
+/// One published pass: the film's mean so far and what the pass cost.
+struct Frame {
+    std::uint64_t request = 0;  // the submit() it belongs to
+    bool preview = false;
+    Image image;  // linear radiance
+    int spp = 0;
+    double seconds = 0.0;  // rendering time of the request so far
+    PassStats total;       // summed over the request's full-resolution passes
+    // Statistics of the first full-resolution pass's camera rays (per level and per pixel).
+    std::shared_ptr<const TraceDetail> detail;
+    std::string error;  // why the request could not be rendered (bad parameters)
+};
+
+class RenderWorker {
+  public:
+    RenderWorker();
+    ~RenderWorker();
+    RenderWorker(const RenderWorker&) = delete;
+    RenderWorker& operator=(const RenderWorker&) = delete;
+
+    /// Replaces the current request; returns its number. Never blocks on rendering.
+    std::uint64_t submit(RenderRequest request);
+
+    /// The newest published frame (null before the first).
+    std::shared_ptr<const Frame> latest() const;
+
+    /// Passes rendered since the start (to tell whether anything new arrived).
+    std::uint64_t published() const { return published_.load(); }
+
+  private:
+    void run();
+    void publish(std::shared_ptr<const Frame> frame);
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    std::shared_ptr<const RenderRequest> pending_;  // guarded by mutex_
+    std::uint64_t submitted_ = 0;                   // guarded by mutex_
+    bool quit_ = false;                             // guarded by mutex_
+    std::shared_ptr<const Frame> latest_;           // guarded by mutex_
+    std::atomic<bool> cancel_{false};
+    std::atomic<std::uint64_t> published_{0};
+    std::thread thread_;
+};
+
+}  // namespace edacrt::app

@@ -1,0 +1,29 @@
+#pragma once
+// The viewer's --script: UI actions, one per line, for headless tests and demos.
+//   set KEY VALUE      a UI parameter (the keys of the panels: method, bins, spp, ...)
+//   view NAME          render | box | triangle | depth | order
+//   wait-spp N         until the shown image has N samples per pixel (of the current settings)
+//   frames N           let N frames pass
+//   orbit DX DY        drag the camera by DX, DY pixels
+//   screenshot FILE    save the window as PNG
+//   quit
+// '#' starts a comment. Errors name the line.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace edacrt::app {
+
+struct ScriptCommand {
+    std::string verb;
+    std::vector<std::string> args;
+    int line = 0;
+};
+
+/// Throws InputError ("FILE:LINE: ...") for unknown verbs or wrong argument counts.
+std::vector<ScriptCommand> parse_script(std::string_view text, const std::string& source);
+
+/// Reads and parses a script file.
+std::vector<ScriptCommand> load_script(const std::string& path);
+
+}  // namespace edacrt::app

@@ -1,0 +1,482 @@
+#include "viewer.h"
+
+// glad before GLFW, so GLFW does not pull in the system GL header.
+#include <glad/gl.h>
+// clang-format off
+#include <GLFW/glfw3.h>
+// clang-format on
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <future>
+#include <iostream>
+#include <optional>
+
+#include "display.h"
+#include "render/film.h"
+#include "script.h"
+#include "util/error.h"
+#include "viewer_state.h"
+
+namespace edacrt::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The scenes offered in the list: the bundled OBJ files and the built-in scenes.
+std::vector<std::string> scene_list(const std::filesystem::path& assets) {
+    std::vector<std::string> list;
+    std::error_code error;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(assets, error))
+        if (entry.path().extension() == ".obj") list.push_back(entry.path().string());
+    std::sort(list.begin(), list.end());
+    for (const char* builtin : {"builtin:cornell", "builtin:sphere:subdiv=5", "builtin:cube:n=8"})
+        list.emplace_back(builtin);
+    return list;
+}
+
+/// Loads a scene into the state; on failure keeps the previous one and shows the error.
+void load_into(ViewerState& s, const std::string& spec) {
+    try {
+        auto scene = std::make_shared<Scene>(load_scene(spec));
+        if (scene->triangle_count() == 0) throw InputError(spec + ": the scene has no triangles");
+        s.scene_camera = scene->camera.value_or(frame_box(scene->bounds()));
+        s.camera.reset(s.scene_camera);
+        s.scene_label =
+            scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
+        for (const std::string& w : scene->warnings)
+            std::cerr << "edacrt_viewer: warning: " << w << "\n";
+        s.scene = std::move(scene);
+        s.scene_error.clear();
+        s.scene_path = spec;
+    } catch (const std::exception& e) {
+        s.scene_error = e.what();
+    }
+}
+
+RenderRequest make_request(const ViewerState& s, int width, int height) {
+    RenderRequest r;
+    r.scene = s.scene;
+    r.camera = s.camera.camera();
+    r.method = s.ui.method;
+    r.params = s.ui.params;
+    r.embree_mode = s.ui.embree_mode;
+    r.settings.width = std::max(1, int(float(width) * s.ui.resolution_scale));
+    r.settings.height = std::max(1, int(float(height) * s.ui.resolution_scale));
+    r.settings.integrator = s.ui.integrator;
+    r.settings.primary = s.ui.primary;
+    r.settings.max_depth = s.ui.max_depth;
+    r.settings.ao_samples = s.ui.ao_samples;
+    r.settings.seed = std::uint32_t(s.ui.seed);
+    r.settings.tile_pixels = 1 << 16;  // small wavefronts: a change cancels within a batch
+    r.spp_target = s.ui.spp_target;
+    r.threads = s.ui.threads;
+    r.paused = s.ui.paused;
+    return r;
+}
+
+bool same_camera(const Camera& a, const Camera& b) {
+    return a.eye == b.eye && a.look_at == b.look_at && a.up == b.up &&
+           a.vfov_degrees == b.vfov_degrees;
+}
+
+/// Traces one camera ray per pixel with every method (for the statistics panel).
+std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
+                                          int width, int height, EdacrtParams params) {
+    const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
+    std::vector<Hit> hits(rays.size());
+    std::vector<MethodTotals> out;
+    for (Method method :
+         {Method::edacrt, Method::dacrt, Method::bvh, Method::embree, Method::naive}) {
+        MethodTotals totals;
+        totals.method = method;
+        try {
+            if (method == Method::naive &&
+                double(rays.size()) * double(scene->triangle_count()) > 5e9)
+                throw InputError("skipped: too slow here");
+            const auto tracer = make_tracer(method, params);
+            tracer->set_scene(*scene);
+            const auto start = Clock::now();
+            totals.stats = tracer->trace(rays, hits, Query::closest);
+            totals.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        } catch (const std::exception& e) {
+            totals.error = e.what();
+        }
+        out.push_back(totals);
+    }
+    return out;
+}
+
+/// Applies `set KEY VALUE` of a script to the UI settings; throws InputError.
+void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
+    UiSettings& ui = s.ui;
+    EdacrtParams& p = ui.params;
+    const auto number = [&] {
+        try {
+            std::size_t used = 0;
+            const double v = std::stod(value, &used);
+            if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
+            return v;
+        } catch (const std::exception&) {
+            throw InputError("'" + key + "' needs a number, got '" + value + "'");
+        }
+    };
+    if (key == "method")
+        ui.method = parse_method(value);
+    else if (key == "embree-mode")
+        ui.embree_mode = parse_embree_mode(value);
+    else if (key == "integrator")
+        ui.integrator = parse_integrator(value);
+    else if (key == "primary")
+        ui.primary = parse_primary_shading(value);
+    else if (key == "spp")
+        ui.spp_target = int(number());
+    else if (key == "max-depth")
+        ui.max_depth = int(number());
+    else if (key == "ao-samples")
+        ui.ao_samples = int(number());
+    else if (key == "resolution")
+        ui.resolution_scale = float(number());
+    else if (key == "threads")
+        ui.threads = int(number());
+    else if (key == "seed")
+        ui.seed = int(number());
+    else if (key == "pause")
+        ui.paused = number() != 0;
+    else if (key == "bins")
+        p.bins = int(number());
+    else if (key == "sample-count")
+        p.sample_count = std::uint32_t(number());
+    else if (key == "sample-threshold")
+        p.sample_threshold = std::uint32_t(number());
+    else if (key == "leaf-rays")
+        p.leaf_rays = std::uint32_t(number());
+    else if (key == "leaf-tris")
+        p.leaf_tris = std::uint32_t(number());
+    else if (key == "cost-leaf-max-tris")
+        p.cost_leaf_max_tris = std::uint32_t(number());
+    else if (key == "c-t")
+        p.cost_traversal = float(number());
+    else if (key == "c-i")
+        p.cost_intersect = float(number());
+    else if (key == "c-bv")
+        p.cost_filter = float(number());
+    else if (key == "c-child")
+        p.cost_child = float(number());
+    else if (key == "filter-skip")
+        p.filter_skip = number() != 0;
+    else if (key == "sampling")
+        p.sampling = number() != 0;
+    else if (key == "sampling-seed")
+        p.seed = std::uint32_t(number());
+    else if (key == "exposure")
+        s.exposure = float(number());
+    else if (key == "scene")
+        s.pending_loads.push_back(value);
+    else
+        throw InputError("unknown setting '" + key + "'");
+}
+
+View parse_view(const std::string& name) {
+    if (name == "render") return View::render;
+    if (name == "box") return View::box_tests;
+    if (name == "triangle") return View::triangle_tests;
+    if (name == "depth") return View::depth;
+    if (name == "order") return View::order_misses;
+    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
+}
+
+/// Saves the default framebuffer (what the window shows) as PNG.
+void save_window(const std::string& path, int width, int height) {
+    std::vector<unsigned char> pixels(std::size_t(width) * std::size_t(height) * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    const std::filesystem::path out(path);
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+    // OpenGL rows start at the bottom.
+    stbi_flip_vertically_on_write(1);
+    if (!stbi_write_png(path.c_str(), width, height, 3, pixels.data(), width * 3))
+        throw InputError(path + ": cannot write the screenshot");
+    stbi_flip_vertically_on_write(0);
+}
+
+/// Runs the script one step per frame; false when it has ended (or failed: `error` is set).
+class ScriptRunner {
+  public:
+    explicit ScriptRunner(std::vector<ScriptCommand> commands) : commands_(std::move(commands)) {}
+
+    bool active() const { return next_ < commands_.size(); }
+
+    /// `shown_spp`: samples of the current request on screen (0 while a preview is shown).
+    void step(ViewerState& s, int shown_spp, std::string& screenshot, bool& quit) {
+        while (next_ < commands_.size()) {
+            const ScriptCommand& c = commands_[next_];
+            if (c.verb == "wait-spp") {
+                if (!waiting_) wait_start_ = Clock::now();
+                waiting_ = true;
+                if (shown_spp < std::stoi(c.args[0])) {
+                    if (Clock::now() - wait_start_ > std::chrono::minutes(5))
+                        throw InputError("script line " + std::to_string(c.line) +
+                                         ": timed out waiting for " + c.args[0] + " spp");
+                    return;
+                }
+                waiting_ = false;
+            } else if (c.verb == "frames") {
+                if (frames_left_ < 0) frames_left_ = std::stoi(c.args[0]);
+                if (frames_left_-- > 0) return;
+                frames_left_ = -1;
+            } else if (c.verb == "set" || c.verb == "orbit") {
+                if (c.verb == "set")
+                    apply_setting(s, c.args[0], c.args[1]);
+                else
+                    s.camera.orbit(std::stof(c.args[0]), std::stof(c.args[1]));
+                ++next_;
+                return;  // the next frame submits the change before anything waits on it
+            } else if (c.verb == "view") {
+                s.view = parse_view(c.args[0]);
+            } else if (c.verb == "screenshot") {
+                screenshot = c.args[0];
+                ++next_;
+                return;  // taken at the end of this frame
+            } else if (c.verb == "quit") {
+                quit = true;
+            }
+            ++next_;
+        }
+    }
+
+  private:
+    std::vector<ScriptCommand> commands_;
+    std::size_t next_ = 0;
+    int frames_left_ = -1;
+    bool waiting_ = false;
+    Clock::time_point wait_start_;
+};
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+    ViewerState s;
+    std::optional<ScriptRunner> script;
+    try {
+        s.ui.method = parse_method(options.method);
+        s.ui.integrator = parse_integrator(options.integrator);
+        s.ui.spp_target = options.spp;
+        if (!options.script.empty()) script.emplace(load_script(options.script));
+    } catch (const std::exception& e) {
+        std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        return 1;
+    }
+    load_into(s, options.scene);
+    if (!s.scene) {
+        std::cerr << "edacrt_viewer: error: " << s.scene_error << "\n";
+        return 1;
+    }
+    const std::filesystem::path assets = options.assets_dir.empty()
+                                             ? std::filesystem::path("assets")
+                                             : std::filesystem::path(options.assets_dir);
+    s.scene_list = scene_list(assets);
+
+    glfwSetErrorCallback([](int code, const char* text) {
+        std::cerr << "edacrt_viewer: GLFW error " << code << ": " << text << "\n";
+    });
+    if (!glfwInit()) {
+        std::cerr << "edacrt_viewer: error: cannot initialise GLFW (is there a display?)\n";
+        return 1;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    GLFWwindow* window =
+        glfwCreateWindow(options.width, options.height, "EDACRT Studio", nullptr, nullptr);
+    if (!window) {
+        std::cerr << "edacrt_viewer: error: cannot open an OpenGL 3.3 core window\n";
+        glfwTerminate();
+        return 1;
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(1);
+    if (!gladLoadGL(glfwGetProcAddress)) {
+        std::cerr << "edacrt_viewer: error: cannot load OpenGL 3.3 functions\n";
+        glfwTerminate();
+        return 1;
+    }
+    glfwSetWindowUserPointer(window, &s);
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+        auto* state = static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
+        for (int i = 0; i < count; ++i) state->pending_loads.emplace_back(paths[i]);
+    });
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // the same layout every start (and in tests)
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330");
+
+    int exit_code = 0;
+    {
+        Display display;
+        RenderWorker worker;
+        RenderRequest submitted;
+        std::uint64_t request_id = 0;
+        std::shared_ptr<const Frame> uploaded;
+        View uploaded_view = View::render;
+        float heat_max = 1.0f;
+        std::future<std::vector<MethodTotals>> comparison;
+        auto last = Clock::now();
+        int frame_number = 0;
+        bool quit = false;
+        while (!glfwWindowShouldClose(window) && !quit) {
+            glfwPollEvents();
+            const auto now = Clock::now();
+            const float dt = std::chrono::duration<float>(now - last).count();
+            last = now;
+
+            for (const std::string& spec : std::exchange(s.pending_loads, {})) load_into(s, spec);
+
+            ImGui_ImplOpenGL3_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            const ImGuiIO& io = ImGui::GetIO();
+            if (!io.WantCaptureMouse) {
+                const ImVec2 d = io.MouseDelta;
+                if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
+                if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
+                    ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
+                    s.camera.pan(d.x, d.y, io.DisplaySize.y);
+                if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
+            }
+            if (!io.WantCaptureKeyboard) {
+                // ImGui 1.86 indexes keys by the backend's (GLFW's) key codes.
+                const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
+                const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+                const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+                const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+                if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
+                if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+            }
+
+            if (auto frame = worker.latest(); frame && frame->request == request_id) {
+                s.render_error = frame->error;
+                if (frame->error.empty()) s.frame = frame;
+            }
+            draw_render_panel(s);
+            draw_params_panel(s);
+            draw_stats_panel(s);
+            draw_heatmap_panel(s, heat_max);
+
+            // A changed setting, camera, scene or window size starts a new render.
+            int width = 0, height = 0;
+            glfwGetFramebufferSize(window, &width, &height);
+            if (width > 0 && height > 0) {
+                RenderRequest request = make_request(s, width, height);
+                const bool changed = request_id == 0 || request.scene != submitted.scene ||
+                                     !same_camera(request.camera, submitted.camera) ||
+                                     request.method != submitted.method ||
+                                     request.embree_mode != submitted.embree_mode ||
+                                     request.params != submitted.params ||
+                                     request.settings.width != submitted.settings.width ||
+                                     request.settings.height != submitted.settings.height ||
+                                     request.settings.integrator != submitted.settings.integrator ||
+                                     request.settings.primary != submitted.settings.primary ||
+                                     request.settings.max_depth != submitted.settings.max_depth ||
+                                     request.settings.ao_samples != submitted.settings.ao_samples ||
+                                     request.settings.seed != submitted.settings.seed ||
+                                     request.spp_target != submitted.spp_target ||
+                                     request.threads != submitted.threads ||
+                                     request.paused != submitted.paused;
+                if (changed) {
+                    // Only pausing or raising the target keeps the film: resubmitting restarts.
+                    submitted = request;
+                    request_id = worker.submit(std::move(request));
+                }
+            }
+
+            // Show the newest pass (of the request in force); upload only when it is new.
+            if (s.frame && (s.frame != uploaded || s.view != uploaded_view)) {
+                if (s.frame != uploaded) display.upload_render(s.frame->image);
+                if (s.view != View::render && s.frame->detail) {
+                    const std::vector<float> values = heat_values(*s.frame->detail, s.view);
+                    heat_max = std::max(1.0f, *std::max_element(values.begin(), values.end()));
+                    display.upload_heat(values, s.frame->image.width, s.frame->image.height);
+                }
+                uploaded = s.frame;
+                uploaded_view = s.view;
+            }
+
+            if (s.compare_requested && !comparison.valid()) {
+                s.compare_requested = false;
+                comparison =
+                    std::async(std::launch::async, compare_methods, s.scene, s.camera.camera(),
+                               submitted.settings.width, submitted.settings.height, s.ui.params);
+            }
+            if (comparison.valid() &&
+                comparison.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+                s.comparison = comparison.get();
+            if (s.save_requested && s.frame) {
+                s.save_requested = false;
+                try {
+                    const Image shown = tone_map(s.frame->image, s.exposure, ToneMap(s.tone_map));
+                    write_png(s.save_path, shown);
+                    s.status = "saved " + s.save_path;
+                } catch (const std::exception& e) {
+                    s.status = e.what();
+                }
+            }
+
+            const bool heat =
+                s.view != View::render && s.frame && s.frame->detail && uploaded_view == s.view;
+            ImGui::Render();
+            glViewport(0, 0, width, height);
+            glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+            if (s.frame) display.draw(heat, {s.exposure, s.tone_map}, heat_max, s.heat_log);
+            ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+            ++frame_number;
+            std::string screenshot;
+            const int shown_spp =
+                s.frame && s.frame->request == request_id && !s.frame->preview ? s.frame->spp : 0;
+            try {
+                if (script) {
+                    script->step(s, shown_spp, screenshot, quit);
+                    if (!script->active() && options.frames == 0) quit = true;
+                }
+                // --frames: at the last frame, once a full-resolution pass is on screen.
+                if (options.frames > 0 && frame_number >= options.frames && shown_spp > 0 &&
+                    (!script || !script->active())) {
+                    if (!options.screenshot.empty()) screenshot = options.screenshot;
+                    quit = true;
+                }
+                if (!screenshot.empty()) {
+                    save_window(screenshot, width, height);
+                    std::cout << "screenshot " << screenshot << " (" << width << "x" << height
+                              << ", " << shown_spp << " spp, frame " << frame_number << ")\n";
+                }
+            } catch (const std::exception& e) {
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+                exit_code = 1;
+                quit = true;
+            }
+            glfwSwapBuffers(window);
+        }
+        if (comparison.valid()) comparison.wait();
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return exit_code;
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,23 @@
+#pragma once
+#include <string>
+
+namespace edacrt::app {
+
+struct ViewerOptions {
+    std::string scene = "assets/cornell-box/CornellBox-Original.obj";
+    std::string method = "edacrt";
+    std::string integrator = "path";
+    int spp = 1024;
+    int width = 1280;  // window size
+    int height = 800;
+    int frames = 0;          // > 0: quit after this many frames (with --screenshot: save first)
+    std::string screenshot;  // PNG of the window, taken at the last frame
+    std::string script;      // UI actions (app/script.h)
+    std::string assets_dir;  // where the scene list looks; default: next to the scene
+};
+
+/// Opens the window and runs until it is closed (or the frames / script end). Returns the
+/// process exit code; errors are printed to stderr.
+int run_viewer(const ViewerOptions& options);
+
+}  // namespace edacrt::app

@@ -12,7 +12,12 @@ namespace edacrt::test {
 CliResult run_cli(const std::string& args) {
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     std::string command = "'";
-    command.append(cli_path().string()).append("' ").append(args).append(" 2>&1");
+    command.append(cli_path().string()).append("' ").append(args);
+    return run_command(command);
+}
+
+CliResult run_command(const std::string& shell_command) {
+    const std::string command = shell_command + " 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return {-1, "popen failed"};
     std::string output;

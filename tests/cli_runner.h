@@ -12,4 +12,7 @@ struct CliResult {
 /// Runs `edacrt ARGS` through the shell.
 CliResult run_cli(const std::string& args);
 
+/// Runs a shell command line, stdout and stderr together.
+CliResult run_command(const std::string& shell_command);
+
 }  // namespace edacrt::test

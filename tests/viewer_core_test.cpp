@@ -1,0 +1,156 @@
+// The viewer's window-free parts: the render worker under a storm of parameter changes, the
+// orbit camera, heat-map values, the script parser.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "heatmap.h"
+#include "orbit_camera.h"
+#include "render_worker.h"
+#include "scene/builtin_scenes.h"
+#include "script.h"
+#include "util/error.h"
+
+namespace edacrt::app {
+namespace {
+
+RenderRequest small_request(std::shared_ptr<const Scene> scene) {
+    RenderRequest r;
+    r.scene = std::move(scene);
+    r.camera = *r.scene->camera;
+    r.settings.width = 24;
+    r.settings.height = 16;
+    r.settings.max_depth = 3;
+    r.spp_target = 4;
+    r.threads = 1;  // the race under test is between the UI and the worker thread
+    return r;
+}
+
+/// Waits (up to a minute) for a full-resolution frame of `request` with at least `spp`.
+std::shared_ptr<const Frame> wait_for(const RenderWorker& worker, std::uint64_t request, int spp) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+    while (std::chrono::steady_clock::now() < deadline) {
+        const auto frame = worker.latest();
+        if (frame && frame->request == request &&
+            (!frame->error.empty() || (!frame->preview && frame->spp >= spp)))
+            return frame;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return nullptr;
+}
+
+TEST(RenderWorker, RendersPreviewThenAccumulatesToTheTarget) {
+    RenderWorker worker;
+    const auto scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    const std::uint64_t id = worker.submit(small_request(scene));
+    const auto frame = wait_for(worker, id, 4);
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->error, "");
+    EXPECT_EQ(frame->spp, 4);
+    EXPECT_EQ(frame->image.width, 24);
+    ASSERT_TRUE(frame->detail);
+    EXPECT_EQ(frame->detail->rays.size(), 24u * 16u);  // one per pixel
+    EXPECT_FALSE(frame->detail->levels.empty());       // edacrt: per-level table
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_EQ(worker.latest()->spp, 4);  // stops at the target
+}
+
+TEST(RenderWorker, BadParametersArriveAsAnErrorFrame) {
+    RenderWorker worker;
+    RenderRequest request =
+        small_request(std::make_shared<const Scene>(make_builtin_scene("builtin:cornell")));
+    request.params.bins = 1;
+    const auto frame = wait_for(worker, worker.submit(request), 1);
+    ASSERT_TRUE(frame);
+    EXPECT_NE(frame->error.find("bins"), std::string::npos) << frame->error;
+}
+
+TEST(RenderWorker, SurvivesAThousandRandomParameterChanges) {
+    // The UI thread changes everything while the worker renders; no race (run under
+    // ThreadSanitizer by scripts/test), no hang, and the last request is rendered exactly.
+    RenderWorker worker;
+    const auto cornell = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    const auto sphere =
+        std::make_shared<const Scene>(make_builtin_scene("builtin:sphere:subdiv=2"));
+    std::mt19937 rng(7);
+    const Method methods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::naive};
+    const Integrator integrators[] = {Integrator::primary, Integrator::ao, Integrator::path};
+    RenderRequest request = small_request(cornell);
+    std::uint64_t id = 0;
+    for (int i = 0; i < 1000; ++i) {
+        request.scene = rng() % 2 ? cornell : sphere;
+        request.camera = cornell->camera.value();
+        request.camera.eye.x += float(rng() % 100) * 0.01f;
+        request.method = methods[rng() % 4];
+        request.settings.integrator = integrators[rng() % 3];
+        request.params.bins = 2 + int(rng() % 30);
+        request.params.sample_count = 1 + rng() % 200;
+        request.params.filter_skip = rng() % 2;
+        request.settings.width = 8 + int(rng() % 24);
+        request.paused = rng() % 10 == 0;
+        id = worker.submit(request);
+        if (rng() % 8 == 0) std::this_thread::sleep_for(std::chrono::microseconds(rng() % 2000));
+        (void)worker.latest();
+    }
+    request.paused = false;
+    id = worker.submit(request);
+    const auto frame = wait_for(worker, id, request.spp_target);
+    ASSERT_TRUE(frame) << "the worker did not finish the last request";
+    EXPECT_EQ(frame->error, "");
+    EXPECT_EQ(frame->image.width, request.settings.width);
+}
+
+TEST(OrbitCamera, ResetReproducesTheCameraAndOrbitKeepsTheDistance) {
+    OrbitCamera orbit;
+    const Camera camera{{1, 2, 5}, {0, 1, 0}, {0, 1, 0}, 40.0f};
+    orbit.reset(camera);
+    const Camera again = orbit.camera();
+    EXPECT_NEAR(again.eye.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(again.eye.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(again.eye.z, 5.0f, 1e-5f);
+    orbit.orbit(120.0f, -40.0f);
+    const Camera moved = orbit.camera();
+    EXPECT_NEAR(glm::length(moved.eye - moved.look_at), glm::length(camera.eye - camera.look_at),
+                1e-4f);
+    EXPECT_NO_THROW(validate(moved));
+    orbit.orbit(0.0f, 1e6f);  // pitch is clamped short of the pole
+    EXPECT_NO_THROW(validate(orbit.camera()));
+    orbit.zoom(3.0f);
+    EXPECT_LT(glm::length(orbit.camera().eye - orbit.camera().look_at),
+              glm::length(moved.eye - moved.look_at));
+}
+
+TEST(HeatMap, ValuesComeFromThePerRayStatistics) {
+    TraceDetail detail;
+    detail.rays = {{3, 4, 5, 6}, {7, 8, 9, 10}};
+    EXPECT_EQ(heat_values(detail, View::box_tests), (std::vector<float>{3, 7}));
+    EXPECT_EQ(heat_values(detail, View::triangle_tests), (std::vector<float>{4, 8}));
+    EXPECT_EQ(heat_values(detail, View::depth), (std::vector<float>{5, 9}));
+    EXPECT_EQ(heat_values(detail, View::order_misses), (std::vector<float>{6, 10}));
+    // Turbo runs from dark blue through green to dark red.
+    EXPECT_GT(turbo(0.0f).z, turbo(0.0f).y);
+    EXPECT_GT(turbo(0.5f).y, turbo(0.5f).z);
+    EXPECT_GT(turbo(1.0f).x, 4.0f * turbo(1.0f).z);
+}
+
+TEST(Script, ParsesCommandsAndNamesTheLineOfAnError) {
+    const auto commands =
+        parse_script("# a comment\nset bins 16\n\nwait-spp 4 # more\nquit\n", "s");
+    ASSERT_EQ(commands.size(), 3u);
+    EXPECT_EQ(commands[0].verb, "set");
+    EXPECT_EQ(commands[0].args, (std::vector<std::string>{"bins", "16"}));
+    EXPECT_EQ(commands[1].line, 4);
+    try {
+        parse_script("view box\nfly away\n", "s.txt");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "s.txt:2: unknown script command 'fly'");
+    }
+    EXPECT_THROW(parse_script("set bins\n", "s"), InputError);
+    EXPECT_THROW(load_script("/no/such/script"), InputError);
+}
+
+}  // namespace
+}  // namespace edacrt::app

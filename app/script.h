@@ -5,6 +5,10 @@
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   frames N           let N frames pass
 //   orbit DX DY        drag the camera by DX, DY pixels
+//   panel NAME open|closed    expand or collapse a panel (NAME with '_' for spaces)
+//   record             record the view's recursion (recursion explorer)
+//   pick X Y           follow the camera ray under window position X, Y (traversal debugger)
+//   wait-analysis      until the recording or the followed ray is ready
 //   screenshot FILE    save the window as PNG
 //   quit
 // '#' starts a comment. Errors name the line.

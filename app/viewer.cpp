@@ -113,6 +113,33 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Ca
     return out;
 }
 
+/// Records the recursion of the view's pixel-centre camera rays, following one pixel.
+std::shared_ptr<const Analysis> analyse(std::shared_ptr<const Scene> scene, Camera camera,
+                                        int width, int height, Method method, EdacrtParams params,
+                                        std::int64_t pixel) {
+    auto a = std::make_shared<Analysis>();
+    a->camera = camera;
+    a->width = width;
+    a->height = height;
+    a->method = method;
+    a->pixel = pixel;
+    try {
+        const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
+        std::vector<Hit> hits(rays.size());
+        auto detail = std::make_shared<TraceDetail>();
+        detail->max_nodes = 300'000;
+        detail->follow_ray = pixel;
+        const auto tracer = make_tracer(method, params);
+        tracer->set_scene(*scene);
+        tracer->trace(rays, hits, Query::closest, detail.get());
+        if (pixel >= 0 && std::size_t(pixel) < hits.size()) a->hit = hits[std::size_t(pixel)];
+        a->detail = std::move(detail);
+    } catch (const std::exception& e) {
+        a->error = e.what();
+    }
+    return a;
+}
+
 /// Applies `set KEY VALUE` of a script to the UI settings; throws InputError.
 void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
     UiSettings& ui = s.ui;
@@ -179,6 +206,10 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         s.exposure = float(number());
     else if (key == "scene")
         s.pending_loads.push_back(value);
+    else if (key == "level")
+        s.explorer_level = int(number());
+    else if (key == "node")
+        s.explorer_node = std::int32_t(number());
     else
         throw InputError("unknown setting '" + key + "'");
 }
@@ -241,6 +272,24 @@ class ScriptRunner {
                 return;  // the next frame submits the change before anything waits on it
             } else if (c.verb == "view") {
                 s.view = parse_view(c.args[0]);
+            } else if (c.verb == "panel") {
+                std::string name = c.args[0];
+                std::replace(name.begin(), name.end(), '_', ' ');
+                if (c.args[1] != "open" && c.args[1] != "closed")
+                    throw InputError("script line " + std::to_string(c.line) +
+                                     ": panel state is open or closed");
+                s.collapse_panels.emplace_back(name, c.args[1] == "closed");
+            } else if (c.verb == "record") {
+                s.analysis_requested = true;
+                analysis_asked_ = true;
+            } else if (c.verb == "pick") {
+                pick_ = ImVec2(std::stof(c.args[0]), std::stof(c.args[1]));
+                analysis_asked_ = true;
+            } else if (c.verb == "wait-analysis") {
+                if (analysis_asked_ || s.analysis_running || s.analysis_requested) {
+                    analysis_asked_ = s.analysis_running || s.analysis_requested;
+                    return;
+                }
             } else if (c.verb == "screenshot") {
                 screenshot = c.args[0];
                 ++next_;
@@ -252,8 +301,13 @@ class ScriptRunner {
         }
     }
 
+    /// A window position to pick (the traversal debugger), consumed by the viewer.
+    std::optional<ImVec2> take_pick() { return std::exchange(pick_, std::nullopt); }
+
   private:
     std::vector<ScriptCommand> commands_;
+    std::optional<ImVec2> pick_;
+    bool analysis_asked_ = false;
     std::size_t next_ = 0;
     int frames_left_ = -1;
     bool waiting_ = false;
@@ -332,6 +386,7 @@ int run_viewer(const ViewerOptions& options) {
         View uploaded_view = View::render;
         float heat_max = 1.0f;
         std::future<std::vector<MethodTotals>> comparison;
+        std::future<std::shared_ptr<const Analysis>> analysis;
         auto last = Clock::now();
         int frame_number = 0;
         bool quit = false;
@@ -346,8 +401,25 @@ int run_viewer(const ViewerOptions& options) {
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
+            for (const auto& [name, closed] : std::exchange(s.collapse_panels, {}))
+                ImGui::SetWindowCollapsed(name.c_str(), closed);
             const ImGuiIO& io = ImGui::GetIO();
-            if (!io.WantCaptureMouse) {
+            // The traversal debugger's pixel: a click on the image while picking, or the script.
+            std::optional<ImVec2> pick = script ? script->take_pick() : std::nullopt;
+            if (s.picking && !io.WantCaptureMouse && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+                pick = io.MousePos;
+                s.picking = false;
+            }
+            if (pick && submitted.settings.width > 0) {
+                const int x =
+                    std::clamp(int(pick->x / io.DisplaySize.x * float(submitted.settings.width)), 0,
+                               submitted.settings.width - 1);
+                const int y =
+                    std::clamp(int(pick->y / io.DisplaySize.y * float(submitted.settings.height)),
+                               0, submitted.settings.height - 1);
+                s.follow_pixel = std::int64_t(y) * submitted.settings.width + x;
+                s.analysis_requested = true;
+            } else if (!io.WantCaptureMouse) {
                 const ImVec2 d = io.MouseDelta;
                 if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
                 if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
@@ -373,6 +445,8 @@ int run_viewer(const ViewerOptions& options) {
             draw_params_panel(s);
             draw_stats_panel(s);
             draw_heatmap_panel(s, heat_max);
+            draw_recursion_panel(s);
+            draw_traversal_panel(s);
 
             // A changed setting, camera, scene or window size starts a new render.
             int width = 0, height = 0;
@@ -413,6 +487,19 @@ int run_viewer(const ViewerOptions& options) {
                 uploaded_view = s.view;
             }
 
+            if (s.analysis_requested && !analysis.valid() && s.scene &&
+                submitted.settings.width > 0) {
+                s.analysis_requested = false;
+                s.analysis_running = true;
+                analysis = std::async(std::launch::async, analyse, s.scene, submitted.camera,
+                                      submitted.settings.width, submitted.settings.height,
+                                      s.ui.method, s.ui.params, s.follow_pixel);
+            }
+            if (analysis.valid() &&
+                analysis.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+                s.analysis = analysis.get();
+                s.analysis_running = false;
+            }
             if (s.compare_requested && !comparison.valid()) {
                 s.compare_requested = false;
                 comparison =
@@ -470,6 +557,7 @@ int run_viewer(const ViewerOptions& options) {
             glfwSwapBuffers(window);
         }
         if (comparison.valid()) comparison.wait();
+        if (analysis.valid()) analysis.wait();
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

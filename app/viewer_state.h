@@ -39,6 +39,18 @@ struct MethodTotals {
     std::string error;
 };
 
+/// A recorded trace of the current view's pixel-centre camera rays: the recursion's nodes and
+/// (for the traversal debugger) one pixel's path. Computed off the UI thread on request.
+struct Analysis {
+    std::shared_ptr<const TraceDetail> detail;
+    Camera camera;
+    int width = 0, height = 0;  // of the traced image
+    Method method = Method::edacrt;
+    std::int64_t pixel = -1;  // the followed pixel (y * width + x), or -1
+    Hit hit;                  // its closest hit
+    std::string error;
+};
+
 struct ViewerState {
     UiSettings ui;
     View view = View::render;
@@ -62,6 +74,17 @@ struct ViewerState {
     bool save_requested = false;
     std::string save_path = "out/viewer.png";
     std::string status;  // one line of feedback (saved, loaded, ...)
+
+    // Recursion explorer and traversal debugger.
+    std::shared_ptr<const Analysis> analysis;
+    bool analysis_running = false;
+    bool analysis_requested = false;
+    std::int64_t follow_pixel = -1;  // the debugger's pixel, for the next analysis
+    bool picking = false;            // the next click on the image picks the debugger's pixel
+    int explorer_level = 0;
+    std::int32_t explorer_node = -1;  // selected node (its candidate splits are shown)
+    std::int32_t hovered_candidate = -1;
+    std::vector<std::pair<std::string, bool>> collapse_panels;  // from the script: name, closed
 };
 
 // The panels, one file each under panels/.
@@ -69,5 +92,11 @@ void draw_render_panel(ViewerState& state);
 void draw_params_panel(ViewerState& state);
 void draw_stats_panel(ViewerState& state);
 void draw_heatmap_panel(ViewerState& state, float heat_max);
+void draw_recursion_panel(ViewerState& state);
+void draw_traversal_panel(ViewerState& state);
+
+/// Draws a box's projected edges over the image (background draw list).
+void draw_box_overlay(const Analysis& analysis, const Aabb& box, unsigned colour,
+                      float thickness = 1.0f);
 
 }  // namespace edacrt::app

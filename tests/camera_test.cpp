@@ -53,5 +53,18 @@ TEST(Camera, InvalidCamerasAreRejected) {
     EXPECT_NO_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 45}));
 }
 
+TEST(Camera, PixelIsTheInverseOfRay) {
+    const Camera camera{{1, 2, 3}, {0, 0.5f, -1}, {0, 1, 0}, 50.0f};
+    const PinholeProjection projection(camera, 320, 200);
+    for (const glm::vec2 p : {glm::vec2(0, 0), glm::vec2(160, 100), glm::vec2(319.5f, 12.25f)}) {
+        const Ray ray = projection.ray(p.x, p.y);
+        const auto back = projection.pixel(ray.org + 7.0f * ray.dir);
+        ASSERT_TRUE(back);
+        EXPECT_NEAR(back->x, p.x, 1e-3f);
+        EXPECT_NEAR(back->y, p.y, 1e-3f);
+    }
+    EXPECT_FALSE(projection.pixel(camera.eye - (camera.look_at - camera.eye)));  // behind
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -121,5 +121,70 @@ TEST(TraceStats, NaiveAndBvhFillPerRayCounts) {
     }
 }
 
+TEST(TraceStats, RecordedNodesAndAFollowedRayDescribeTheRecursion) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=4");
+    const std::vector<Ray> rays = camera_and_random_rays(scene);
+    EdacrtTracer tracer;
+    tracer.set_scene(scene);
+    std::vector<Hit> fast(rays.size()), hits(rays.size());
+    tracer.trace(rays, fast, Query::closest);
+    const std::size_t followed = 80 * 30 + 40;  // a camera ray through the sphere's middle
+    TraceDetail detail;
+    detail.max_nodes = 1'000'000;
+    detail.follow_ray = std::int64_t(followed);
+    tracer.trace(rays, hits, Query::closest, &detail);
+    ASSERT_EQ(std::memcmp(fast.data(), hits.data(), fast.size() * sizeof(Hit)), 0);
+    ASSERT_TRUE(hits[followed].hit());
+
+    // Nodes: the per-level sums match the level table; links are consistent; a split node
+    // keeps all K - 1 candidates and chose the cheapest.
+    ASSERT_FALSE(detail.nodes.empty());
+    std::vector<std::uint64_t> rays_in(detail.levels.size()), nodes(detail.levels.size());
+    for (std::size_t i = 0; i < detail.nodes.size(); ++i) {
+        const NodeRecord& n = detail.nodes[i];
+        ASSERT_LT(n.depth, detail.levels.size());
+        rays_in[n.depth] += n.rays;
+        ++nodes[n.depth];
+        if (n.parent >= 0) {
+            const NodeRecord& p = detail.nodes[std::size_t(n.parent)];
+            EXPECT_EQ(p.depth + 1, n.depth);
+            EXPECT_TRUE(p.children[0] == std::int32_t(i) || p.children[1] == std::int32_t(i));
+        } else {
+            EXPECT_EQ(n.depth, 0);
+        }
+        if (n.leaf) continue;
+        ASSERT_EQ(n.candidates.size(), std::size_t(EdacrtParams{}.bins - 1));
+        ASSERT_GE(n.chosen, 0);
+        for (const CandidateSplit& c : n.candidates)
+            EXPECT_GE(c.cost, n.candidates[std::size_t(n.chosen)].cost);
+        const CandidateSplit& chosen = n.candidates[std::size_t(n.chosen)];
+        EXPECT_EQ(chosen.left_triangles + chosen.right_triangles, n.triangles);
+    }
+    for (std::size_t d = 0; d < detail.levels.size(); ++d) {
+        EXPECT_EQ(rays_in[d], detail.levels[d].rays_in) << "level " << d;
+        EXPECT_EQ(nodes[d], detail.levels[d].nodes) << "level " << d;
+    }
+
+    // The followed ray: from the root down, depth first; it reaches the leaf of its hit.
+    ASSERT_FALSE(detail.follow.empty());
+    EXPECT_EQ(detail.follow.front().depth, 0);
+    for (std::size_t k = 1; k < detail.follow.size(); ++k)
+        EXPECT_LE(detail.follow[k].depth, detail.follow[k - 1].depth + 1);
+    int hit_leaves = 0;
+    for (const RayVisit& v : detail.follow) {
+        ASSERT_GE(v.node, 0);
+        const NodeRecord& n = detail.nodes[std::size_t(v.node)];
+        EXPECT_EQ(n.leaf, v.leaf);
+        hit_leaves += v.hit_here;
+        if (v.hit_here) {
+            EXPECT_TRUE(v.leaf);
+        }
+    }
+    EXPECT_GE(hit_leaves, 1);
+    std::uint16_t deepest = 0;
+    for (const RayVisit& v : detail.follow) deepest = std::max(deepest, v.depth);
+    EXPECT_EQ(deepest, detail.rays[followed].deepest_level);
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -88,6 +89,42 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
     EXPECT_GT(wall.x, 0.05f);
     EXPECT_LT(std::abs(wall.x - wall.y), 0.02f) << "ao is grey";
     if (!HasFailure()) std::filesystem::remove_all(dir);  // kept for a look otherwise
+}
+
+/// Fraction of pixels in the rectangle close to the colour c (8-bit sRGB).
+double near_colour(const Image& image, int x0, int y0, int x1, int y1, glm::vec3 srgb) {
+    int count = 0;
+    const auto linear = [](float c) {
+        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    };
+    const glm::vec3 target(linear(srgb.x), linear(srgb.y), linear(srgb.z));
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) count += glm::length(image.at(x, y) - target) < 0.08f;
+    return double(count) / double((x1 - x0) * (y1 - y0));
+}
+
+TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_debug_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
+    // The teapot: enough triangles for a few levels. The debugger follows the middle pixel.
+    std::ofstream(dir / "script.txt")
+        << "wait-spp 1\nscreenshot " << shot("plain") << "\npanel Traversal_debugger open\n"
+        << "pick 640 400\nwait-analysis\nframes 2\nscreenshot " << shot("debugger") << "\n";
+    const std::string scene = (test::source_dir() / "assets/teapot/teapot.obj").string();
+    const auto result =
+        test::run_command("xvfb-run -a -s '-screen 0 1280x800x24' " EDACRT_VIEWER
+                          " --width 1280 --height 800 --integrator primary --script " +
+                          (dir / "script.txt").string() + " " + scene);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const Image plain = read_png(shot("plain")), debugger = read_png(shot("debugger"));
+    // The followed ray's boxes: yellow (255, 230, 60) lines appear over the image.
+    const glm::vec3 yellow(1.0f, 230.0f / 255.0f, 60.0f / 255.0f);
+    EXPECT_EQ(near_colour(plain, 0, 0, 1280, 800, yellow), 0.0);
+    EXPECT_GT(near_colour(debugger, 0, 0, 1280, 800, yellow), 1e-4);
+    if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
 TEST(ViewerScreenshots, ABrokenSceneOnTheCommandLineFailsClearly) {

@@ -44,9 +44,23 @@ PinholeProjection::PinholeProjection(const Camera& camera, int width, int height
     const glm::vec3 up = glm::cross(right, forward);
     const float half_height = std::tan(0.5f * glm::radians(camera.vfov_degrees));
     const float half_width = half_height * float(width) / float(height);
+    forward_ = forward;
+    right_ = right;
+    up_ = up;
+    half_width_ = half_width;
+    half_height_ = half_height;
     top_left_ = forward - half_width * right + half_height * up;
     step_x_ = (2.0f * half_width / float(width)) * right;
     step_y_ = (-2.0f * half_height / float(height)) * up;
+}
+
+std::optional<glm::vec2> PinholeProjection::pixel(const glm::vec3& point) const {
+    const glm::vec3 d = point - eye_;
+    const float z = glm::dot(d, forward_);
+    if (!(z > 0.0f)) return std::nullopt;
+    const float u = glm::dot(d, right_) / z, v = glm::dot(d, up_) / z;
+    return glm::vec2((u + half_width_) / (2.0f * half_width_) * float(width_),
+                     (half_height_ - v) / (2.0f * half_height_) * float(height_));
 }
 
 Ray PinholeProjection::ray(float x, float y) const {

@@ -1,5 +1,7 @@
 #pragma once
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <vector>
 
 #include "geometry/aabb.h"
@@ -34,11 +36,17 @@ class PinholeProjection {
 
     glm::vec3 eye() const { return eye_; }
 
+    /// Where `point` appears in the image, in pixels (the inverse of ray()); empty when it is
+    /// not in front of the camera.
+    std::optional<glm::vec2> pixel(const glm::vec3& point) const;
+
     /// One ray through each pixel centre, row by row from the top-left.
     std::vector<Ray> pixel_centre_rays() const;
 
   private:
     glm::vec3 eye_;
+    glm::vec3 forward_, right_, up_;
+    float half_width_, half_height_;
     glm::vec3 top_left_;  // direction to the image corner at distance 1
     glm::vec3 step_x_;    // direction change per pixel
     glm::vec3 step_y_;

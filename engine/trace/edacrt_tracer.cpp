@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <iterator>
 
 #include "geometry/ray_box.h"
 #include "util/hash_random.h"
@@ -81,6 +82,15 @@ class Recursion {
           stats_(stats),
           levels_(levels) {}
 
+    /// Statistics runs may also record nodes (up to max_nodes) and the path of one ray.
+    void record(std::vector<NodeRecord>* nodes, std::size_t max_nodes,
+                std::vector<RayVisit>* visits, std::int64_t follow_ray) {
+        nodes_ = nodes;
+        max_nodes_ = max_nodes;
+        visits_ = visits;
+        follow_ = follow_ray;
+    }
+
     /// Keeps (moves to the front) the rays that reach `box` before their current hit; the
     /// tests count for level `depth`.
     std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box, int depth) {
@@ -97,11 +107,31 @@ class Recursion {
     }
 
     /// `path` has bit d set where, at depth d, this node is the child visited second.
+    /// `parent` and `side`: the recorded parent node and which child this is (statistics).
     void run(const Aabb& box, std::uint32_t* rays, std::size_t ray_count, std::uint32_t* tris,
-             std::size_t tri_count, int depth, std::uint64_t path) {
+             std::size_t tri_count, int depth, std::uint64_t path, std::int32_t parent = -1,
+             int side_in_parent = 0) {
         if (ray_count == 0) return;
         [[maybe_unused]] Clock::time_point start;
+        [[maybe_unused]] std::int32_t node = -1;   // recorded node
+        [[maybe_unused]] std::int64_t followed = -1;  // recorded visit of the followed ray
         if constexpr (kStats) {
+            if (nodes_ && nodes_->size() < max_nodes_) {
+                node = std::int32_t(nodes_->size());
+                NodeRecord& record = nodes_->emplace_back();
+                record.parent = parent;
+                record.depth = std::uint16_t(std::min(depth, 65535));
+                record.box = box;
+                record.rays = std::uint32_t(ray_count);
+                record.triangles = std::uint32_t(tri_count);
+                record.leaf_cost = p_.cost_intersect * float(tri_count);
+                if (parent >= 0) (*nodes_)[std::size_t(parent)].children[side_in_parent] = node;
+            }
+            if (follow_ >= 0 &&
+                std::find(rays, rays + ray_count, std::uint32_t(follow_)) != rays + ray_count) {
+                followed = std::int64_t(visits_->size());
+                visits_->push_back({node, std::uint16_t(std::min(depth, 65535))});
+            }
             start = Clock::now();
             LevelStats& stats = level(depth);
             ++stats.nodes;
@@ -114,13 +144,32 @@ class Recursion {
         }
         Split split;
         if (ray_count <= p_.leaf_rays || tri_count <= p_.leaf_tris ||
-            !choose_split(box, rays, ray_count, tris, tri_count, depth, split)) {
+            !choose_split(box, rays, ray_count, tris, tri_count, depth, split, node)) {
+            [[maybe_unused]] Hit before;
+            if constexpr (kStats)
+                if (followed >= 0) before = state_.hits[follow_];
             leaf(rays, ray_count, tris, tri_count, depth, path);
             if constexpr (kStats) {
                 ++level(depth).leaves;
                 level(depth).seconds += seconds_since(start);
+                if (followed >= 0) {
+                    RayVisit& v = (*visits_)[std::size_t(followed)];
+                    v.leaf = true;
+                    v.hit_here = state_.hits[follow_].prim != before.prim ||
+                                 state_.hits[follow_].t != before.t;
+                }
             }
             return;
+        }
+        if constexpr (kStats) {
+            if (node >= 0) {
+                NodeRecord& record = (*nodes_)[std::size_t(node)];
+                record.leaf = false;
+                record.axis = split.axis;
+                record.chosen = split.last_left_bin;
+                record.left_first = split.left_first;
+            }
+            if (followed >= 0) (*visits_)[std::size_t(followed)].first_side_right = !split.left_first;
         }
         // Partition the triangles by the chosen bin boundary (Section 3.1).
         std::uint32_t* middle = std::partition(tris, tris + tri_count, [&](std::uint32_t t) {
@@ -145,8 +194,17 @@ class Recursion {
                 stats.rays_passed += passed;
                 ++(skip_filter ? stats.filters_skipped : stats.filters_done);
                 stats.seconds += seconds_since(start);
+                if (node >= 0) {
+                    NodeRecord& record = (*nodes_)[std::size_t(node)];
+                    record.filter_skipped[side] = skip_filter;
+                    record.rays_passed[side] = std::uint32_t(passed);
+                }
+                if (followed >= 0)
+                    (*visits_)[std::size_t(followed)].passed[side] =
+                        std::find(rays, rays + passed, std::uint32_t(follow_)) != rays + passed;
             }
-            run(split.box[side], rays, passed, child_tris[side], n, depth + 1, child_path);
+            run(split.box[side], rays, passed, child_tris[side], n, depth + 1, child_path, node,
+                side);
             if constexpr (kStats) start = Clock::now();
         }
         if constexpr (kStats) level(depth).seconds += seconds_since(start);
@@ -168,7 +226,8 @@ class Recursion {
     /// and the traversal order (Section 3.3). Returns false when no split beats a leaf or
     /// none separates the triangles.
     bool choose_split(const Aabb& box, const std::uint32_t* rays, std::size_t ray_count,
-                      const std::uint32_t* tris, std::size_t tri_count, int depth, Split& split) {
+                      const std::uint32_t* tris, std::size_t tri_count, int depth, Split& split,
+                      [[maybe_unused]] std::int32_t node) {
         const int K = p_.bins;
         // Bin along the longest axis of V, over the range the centroids span on it; if they
         // all coincide there, along the axis where the centroids spread most.
@@ -213,7 +272,15 @@ class Recursion {
         for (int j = 0; j < K - 1; ++j) {
             left_count += scratch_.bin_count[j];
             const std::size_t right_count = tri_count - left_count;
-            if (left_count == 0 || right_count == 0) continue;
+            if (left_count == 0 || right_count == 0) {
+                if constexpr (kStats)
+                    if (node >= 0)
+                        (*nodes_)[std::size_t(node)].candidates.push_back(
+                            {scratch_.left_bounds[j], scratch_.right_bounds[j],
+                             std::uint32_t(left_count), std::uint32_t(right_count), 0.0f, 0.0f,
+                             kInfinity});
+                continue;
+            }
             float alpha_left, alpha_right;
             if (p_.sampling) {
                 alpha_left = float(scratch_.left_hits[j]) / float(sampled);
@@ -227,6 +294,12 @@ class Recursion {
             const float cost =
                 p_.cost_traversal + p_.cost_intersect * (alpha_left * float(left_count) +
                                                          alpha_right * float(right_count));
+            if constexpr (kStats)
+                if (node >= 0)
+                    (*nodes_)[std::size_t(node)].candidates.push_back(
+                        {scratch_.left_bounds[j], scratch_.right_bounds[j],
+                         std::uint32_t(left_count), std::uint32_t(right_count), alpha_left,
+                         alpha_right, cost});
             if (cost < best_cost) {
                 best_cost = cost;
                 best = j;
@@ -339,6 +412,10 @@ class Recursion {
     BinScratch& scratch_;
     TraceStats& stats_;
     std::vector<LevelStats>& levels_;
+    std::vector<NodeRecord>* nodes_ = nullptr;
+    std::size_t max_nodes_ = 0;
+    std::vector<RayVisit>* visits_ = nullptr;
+    std::int64_t follow_ = -1;
 };
 
 /// Order statistics from each ray's final hit path: at every level above the leaf that
@@ -422,10 +499,11 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
         BinScratch scratch;
         TraceStats stats;
         std::vector<LevelStats> levels;
+        std::vector<NodeRecord> nodes;  // recordings (statistics runs that ask for them)
+        std::vector<RayVisit> visits;
     };
-    tbb::enumerable_thread_specific<Worker> workers([&] {
-        return Worker{{}, BinScratch(params_.bins), {}, {}};
-    });
+    tbb::enumerable_thread_specific<Worker> workers(
+        [&] { return Worker{{}, BinScratch(params_.bins), {}, {}, {}, {}}; });
     const std::size_t chunk_count = std::clamp<std::size_t>(
         n / 8192, 1, 4 * std::size_t(tbb::this_task_arena::max_concurrency()));
     tbb::parallel_for(std::size_t(0), chunk_count, [&](std::size_t chunk) {
@@ -434,6 +512,8 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
         for (std::size_t i = 0; i < worker.tris.size(); ++i) worker.tris[i] = std::uint32_t(i);
         Recursion<Q, kStats> recursion(params_, scene_, state, worker.scratch, worker.stats,
                                        worker.levels);
+        if constexpr (kStats)
+            recursion.record(&worker.nodes, detail->max_nodes, &worker.visits, detail->follow_ray);
         std::uint32_t* ids = batch_.ids.data() + n * chunk / chunk_count;
         const std::size_t count = n * (chunk + 1) / chunk_count - n * chunk / chunk_count;
         const std::size_t inside = recursion.filter(ids, count, scene_.box, 0);
@@ -452,7 +532,28 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
                 detail->levels[d] += worker.levels[d];
         }
     }
-    if constexpr (kStats) count_order(hits, hit_path.data(), hit_depth.data(), *detail);
+    if constexpr (kStats) {
+        count_order(hits, hit_path.data(), hit_depth.data(), *detail);
+        // Each worker numbered its nodes from 0 and capped them at max_nodes on its own; a
+        // worker's nodes are kept whole or not at all, so every index stays valid.
+        for (Worker& worker : workers) {
+            const bool keep = detail->nodes.size() + worker.nodes.size() <= detail->max_nodes;
+            const auto offset = std::int32_t(detail->nodes.size());
+            const auto shift = [&](std::int32_t& i) { i = i >= 0 && keep ? i + offset : -1; };
+            for (NodeRecord& record : worker.nodes) {
+                shift(record.parent);
+                shift(record.children[0]);
+                shift(record.children[1]);
+            }
+            if (keep)
+                std::move(worker.nodes.begin(), worker.nodes.end(),
+                          std::back_inserter(detail->nodes));
+            for (RayVisit& visit : worker.visits) {
+                shift(visit.node);
+                detail->follow.push_back(visit);
+            }
+        }
+    }
     return stats;
 }
 

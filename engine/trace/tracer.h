@@ -40,13 +40,16 @@ class Tracer {
     /// hits[i] receives the closest hit of rays[i] in [tmin, tmax] (Query::closest) or, for
     /// Query::any, a hit with prim >= 0 when anything occludes the ray. Rays must be valid
     /// (finite origin, finite non-zero direction, tmin <= tmax); see validate_ray().
-    /// With `detail`, also records per-ray (and, for recursive methods, per-level) statistics;
-    /// without it the fast path counts only the totals.
+    /// With `detail`, also records per-ray (and, for recursive methods, per-level) statistics,
+    /// and for those methods the nodes and one ray's path when `detail` asks for them; without
+    /// it the fast path counts only the totals.
     TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                      TraceDetail* detail = nullptr) {
         if (detail) {
             detail->levels.clear();
             detail->rays.assign(rays.size(), RayStats{});
+            detail->nodes.clear();
+            detail->follow.clear();
         }
         return trace_batch(rays, hits, query, detail);
     }

@@ -1,0 +1,153 @@
+// Recursion explorer (teaching): the boxes of one level of the current view's recursion over
+// the image, each node's rays, triangles and cost; a node's K - 1 candidate splits with their
+// costs and the chosen one.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/hash_random.h"
+#include "viewer_state.h"
+
+namespace edacrt::app {
+namespace {
+
+unsigned node_colour(std::size_t node, float alpha = 1.0f) {
+    const glm::vec3 c = turbo(0.1f + 0.8f * hash_to_unit_float(pcg_hash(std::uint32_t(node))));
+    return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, alpha));
+}
+
+void candidates_table(ViewerState& s, const NodeRecord& node) {
+    ImGui::Text("node %d: %u rays, %u triangles, split along %c; leaf cost %.1f", s.explorer_node,
+                node.rays, node.triangles, "xyz"[std::max(node.axis, 0)], node.leaf_cost);
+    s.hovered_candidate = -1;
+    if (!ImGui::BeginTable("candidates", 6, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg))
+        return;
+    for (const char* h : {"j", "N_L", "N_R", "a_L", "a_R", "cost"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (std::size_t j = 0; j < node.candidates.size(); ++j) {
+        const CandidateSplit& c = node.candidates[j];
+        ImGui::TableNextRow();
+        if (std::int32_t(j) == node.chosen)
+            ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, IM_COL32(40, 110, 60, 255));
+        ImGui::TableNextColumn();
+        ImGui::Text("%zu%s", j, std::int32_t(j) == node.chosen ? " *" : "");
+        if (ImGui::IsItemHovered()) s.hovered_candidate = std::int32_t(j);
+        ImGui::TableNextColumn();
+        ImGui::Text("%u", c.left_triangles);
+        ImGui::TableNextColumn();
+        ImGui::Text("%u", c.right_triangles);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", c.alpha_left);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", c.alpha_right);
+        ImGui::TableNextColumn();
+        std::isfinite(c.cost) ? ImGui::Text("%.1f", c.cost) : ImGui::TextUnformatted("(empty)");
+    }
+    ImGui::EndTable();
+    ImGui::TextDisabled("cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row");
+}
+
+}  // namespace
+
+void draw_recursion_panel(ViewerState& s) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(350, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(360, 300), ImGuiCond_FirstUseEver);
+    (void)display;
+    ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // opened when wanted
+    if (!ImGui::Begin("Recursion explorer")) {
+        ImGui::End();
+        return;
+    }
+    if (ImGui::Button(s.analysis_running ? "recording..." : "record this view"))
+        s.analysis_requested = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("one camera ray per pixel, nodes kept");
+    const Analysis* a = s.analysis.get();
+    if (!a || !a->error.empty() || !a->detail || a->detail->nodes.empty()) {
+        if (a && !a->error.empty())
+            ImGui::TextUnformatted(a->error.c_str());
+        else if (a)
+            ImGui::TextDisabled("(%s records no recursion)",
+                                std::string(method_name(a->method)).c_str());
+        ImGui::End();
+        return;
+    }
+    const auto& nodes = a->detail->nodes;
+    int deepest = 0;
+    for (const NodeRecord& n : nodes) deepest = std::max(deepest, int(n.depth));
+    ImGui::SliderInt("level", &s.explorer_level, 0, deepest);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##down", ImGuiDir_Left))
+        s.explorer_level = std::max(0, s.explorer_level - 1);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##up", ImGuiDir_Right))
+        s.explorer_level = std::min(deepest, s.explorer_level + 1);
+
+    // The level's nodes: boxes over the image, and a list to pick one from.
+    std::size_t shown = 0;
+    if (ImGui::BeginTable("nodes", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY,
+                          ImVec2(0, 130))) {
+        for (const char* h : {"node", "rays", "tris", "kind", "filter"}) ImGui::TableSetupColumn(h);
+        ImGui::TableSetupScrollFreeze(0, 1);
+        ImGui::TableHeadersRow();
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            const NodeRecord& n = nodes[i];
+            if (n.depth != s.explorer_level) continue;
+            if (shown++ < 4000) draw_box_overlay(*a, n.box, node_colour(i, 0.8f));
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::PushStyleColor(ImGuiCol_Text, node_colour(i));
+            if (ImGui::Selectable(std::to_string(i).c_str(), s.explorer_node == std::int32_t(i),
+                                  ImGuiSelectableFlags_SpanAllColumns))
+                s.explorer_node = std::int32_t(i);
+            ImGui::PopStyleColor();
+            if (ImGui::IsItemHovered())
+                draw_box_overlay(*a, n.box, IM_COL32(255, 255, 255, 255), 3);
+            ImGui::TableNextColumn();
+            ImGui::Text("%u", n.rays);
+            ImGui::TableNextColumn();
+            ImGui::Text("%u", n.triangles);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(n.leaf         ? "leaf"
+                                   : n.left_first ? "split, L first"
+                                                  : "split, R first");
+            ImGui::TableNextColumn();
+            if (!n.leaf)
+                ImGui::Text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
+                            n.filter_skipped[1] ? "skip" : "filt");
+        }
+        ImGui::EndTable();
+    }
+    ImGui::Text("%zu nodes at level %d (%zu recorded in all)", shown, s.explorer_level,
+                nodes.size());
+
+    // The selected node's candidate splits; the chosen (or hovered) one drawn as two boxes.
+    if (s.explorer_node >= 0 && std::size_t(s.explorer_node) < nodes.size()) {
+        const NodeRecord& node = nodes[std::size_t(s.explorer_node)];
+        ImGui::Separator();
+        draw_box_overlay(*a, node.box, IM_COL32(255, 255, 255, 255), 2.0f);
+        if (node.leaf) {
+            ImGui::Text("node %d is a leaf: %u rays x %u triangles, brute force", s.explorer_node,
+                        node.rays, node.triangles);
+        } else {
+            candidates_table(s, node);
+            const std::int32_t j = s.hovered_candidate >= 0 ? s.hovered_candidate : node.chosen;
+            const CandidateSplit& c = node.candidates[std::size_t(j)];
+            draw_box_overlay(*a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);
+            draw_box_overlay(*a, c.right, IM_COL32(255, 150, 40, 255), 2.0f);
+        }
+        if (node.parent >= 0 && ImGui::Button("parent")) s.explorer_node = node.parent;
+        for (int side : {0, 1})
+            if (node.children[side] >= 0) {
+                ImGui::SameLine();
+                if (ImGui::Button(side == 0 ? "left child" : "right child"))
+                    s.explorer_node = node.children[side];
+            }
+        if (s.explorer_node >= 0) s.explorer_level = nodes[std::size_t(s.explorer_node)].depth;
+    }
+    ImGui::End();
+}
+
+}  // namespace edacrt::app

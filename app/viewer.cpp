@@ -388,6 +388,8 @@ int run_viewer(const ViewerOptions& options) {
         std::future<std::vector<MethodTotals>> comparison;
         std::future<std::shared_ptr<const Analysis>> analysis;
         auto last = Clock::now();
+        const auto first = last;
+        float slowest_frame = 0.0f;  // seconds, after the first few frames (start-up)
         int frame_number = 0;
         bool quit = false;
         while (!glfwWindowShouldClose(window) && !quit) {
@@ -395,6 +397,7 @@ int run_viewer(const ViewerOptions& options) {
             const auto now = Clock::now();
             const float dt = std::chrono::duration<float>(now - last).count();
             last = now;
+            if (frame_number > 5) slowest_frame = std::max(slowest_frame, dt);
 
             for (const std::string& spec : std::exchange(s.pending_loads, {})) load_into(s, spec);
 
@@ -558,6 +561,12 @@ int run_viewer(const ViewerOptions& options) {
         }
         if (comparison.valid()) comparison.wait();
         if (analysis.valid()) analysis.wait();
+        if (options.frames > 0 || script) {  // headless runs report the UI's frame rate
+            const double seconds = std::chrono::duration<double>(Clock::now() - first).count();
+            std::cout << frame_number << " frames in " << seconds << " s ("
+                      << double(frame_number) / seconds << " fps), slowest frame "
+                      << slowest_frame * 1e3f << " ms\n";
+        }
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -36,8 +36,8 @@ constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::single, EmbreeMode::packet8, 
 
 void draw_render_panel(ViewerState& s) {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Render", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::SetNextWindowSize(ImVec2(330, 412), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Render");
 
     ImGui::TextUnformatted(s.scene_label.c_str());
     if (ImGui::BeginCombo("scene", "choose...")) {

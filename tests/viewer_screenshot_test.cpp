@@ -52,7 +52,8 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
         << "\nview order\nframes 2\nscreenshot " << shot("order")
         << "\nview render\nset method bvh\nset bins 16\n"
            "set integrator ao\nwait-spp 2\nscreenshot "
-        << shot("changed") << "\n";
+        << shot("changed") << "\nset scene /no/such/scene.obj\nframes 2\nwait-spp 3\nscreenshot "
+        << shot("after_bad_scene") << "\n";
     const std::string scene =
         (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string();
     const auto result = test::run_command("xvfb-run -a -s '-screen 0 1280x800x24' " EDACRT_VIEWER
@@ -88,6 +89,9 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
     const glm::vec3 wall = mean(changed, 380, 250, 440, 400);
     EXPECT_GT(wall.x, 0.05f);
     EXPECT_LT(std::abs(wall.x - wall.y), 0.02f) << "ao is grey";
+    // A broken scene file leaves the current scene on screen (its error shows in the panel).
+    const Image after = read_png(shot("after_bad_scene"));
+    EXPECT_LT(glm::length(mean(after, 380, 250, 440, 400) - wall), 0.02f);
     if (!HasFailure()) std::filesystem::remove_all(dir);  // kept for a look otherwise
 }
 

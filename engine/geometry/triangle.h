@@ -95,12 +95,26 @@ inline Real hit_distance_error(Real ax, Real ay, Real az, Real bx, Real by, Real
     return 3 * (gamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) / std::abs(u + v + w);
 }
 
+/// The rare half of intersect_triangle (exact zeros, extreme magnitudes), out of line so the
+/// common path stays small enough to inline into the traversal loops.
+[[gnu::noinline]] inline bool finish_hit_in_double(const WatertightRay& r, float ax, float ay,
+                                                   float az, float bx, float by, float bz, float cx,
+                                                   float cy, float cz, float tmin, float tmax,
+                                                   TriangleHit& out) {
+    const double ud = double(cx) * double(by) - double(cy) * double(bx);
+    const double vd = double(ax) * double(cy) - double(ay) * double(cx);
+    const double wd = double(bx) * double(ay) - double(by) * double(ax);
+    if (!finish_hit(ud, vd, wd, double(az), double(bz), double(cz), tmin, tmax, out)) return false;
+    return double(out.t) > hit_distance_error<double>(ax, ay, az, bx, by, bz, cx, cy, cz, ud, vd,
+                                                      wd, r.shear_x, r.shear_y);
+}
+
 /// Intersects the ray with the triangle. Returns true for a hit with tmin <= t <= tmax whose t
 /// is also conservatively positive (beyond its rounding error bound, as in pbrt), so a ray
 /// spawned from a surface (geometry/offset.h) cannot hit that surface again.
 /// Both faces are hit; a degenerate (zero-area as seen from the ray) triangle is never hit.
-inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
-                               TriangleHit& out) {
+[[gnu::always_inline]] inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri,
+                                                      float tmin, float tmax, TriangleHit& out) {
     const glm::vec3 A = tri.p0 - r.org;
     const glm::vec3 B = tri.p1 - r.org;
     const glm::vec3 C = tri.p2 - r.org;
@@ -124,15 +138,8 @@ inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri, floa
     constexpr float kSmallestSafeDeterminant = 1e-18f, kLargestSafeDeterminant = 1e16f;
     const float det = std::abs(u + v + w);
     if (u == 0.0f || v == 0.0f || w == 0.0f ||
-        !(det >= kSmallestSafeDeterminant && det <= kLargestSafeDeterminant)) {
-        const double ud = double(cx) * double(by) - double(cy) * double(bx);
-        const double vd = double(ax) * double(cy) - double(ay) * double(cx);
-        const double wd = double(bx) * double(ay) - double(by) * double(ax);
-        if (!finish_hit(ud, vd, wd, double(az), double(bz), double(cz), tmin, tmax, out))
-            return false;
-        return double(out.t) > hit_distance_error<double>(ax, ay, az, bx, by, bz, cx, cy, cz, ud,
-                                                          vd, wd, r.shear_x, r.shear_y);
-    }
+        !(det >= kSmallestSafeDeterminant && det <= kLargestSafeDeterminant)) [[unlikely]]
+        return finish_hit_in_double(r, ax, ay, az, bx, by, bz, cx, cy, cz, tmin, tmax, out);
     if (!finish_hit(u, v, w, az, bz, cz, tmin, tmax, out)) return false;
     return out.t >
            hit_distance_error(ax, ay, az, bx, by, bz, cx, cy, cz, u, v, w, r.shear_x, r.shear_y);

@@ -46,11 +46,16 @@ std::shared_ptr<const Frame> RenderWorker::latest() const {
 }
 
 void RenderWorker::publish(std::shared_ptr<const Frame> frame) {
+    std::lock_guard lock(mutex_);
+    latest_ = std::move(frame);
+}
+
+void RenderWorker::set_paused(bool paused) {
     {
         std::lock_guard lock(mutex_);
-        latest_ = std::move(frame);
+        paused_ = paused;
     }
-    ++published_;
+    wake_.notify_all();
 }
 
 void RenderWorker::run() {
@@ -67,7 +72,7 @@ void RenderWorker::run() {
             std::unique_lock lock(mutex_);
             wake_.wait(lock, [&] {
                 return quit_ || pending_ ||
-                       (current && !current->paused &&
+                       (current && !paused_ &&
                         (fresh || (renderer && renderer->film().passes() < current->spp_target)));
             });
             if (quit_) return;

@@ -30,7 +30,8 @@ struct RenderRequest {
     int spp_target = 1024;
     int threads = 0;        // 0: all
     int preview_scale = 4;  // the first pass at 1/preview_scale of the resolution (1: none)
-    bool paused = false;
+
+    bool operator==(const RenderRequest&) const = default;
 };
 
 /// One published pass: the film's mean so far and what the pass cost.
@@ -56,11 +57,11 @@ class RenderWorker {
     /// Replaces the current request; returns its number. Never blocks on rendering.
     std::uint64_t submit(RenderRequest request);
 
+    /// Stops accumulating after the pass in flight, or resumes; the film is kept.
+    void set_paused(bool paused);
+
     /// The newest published frame (null before the first).
     std::shared_ptr<const Frame> latest() const;
-
-    /// Passes rendered since the start (to tell whether anything new arrived).
-    std::uint64_t published() const { return published_.load(); }
 
   private:
     void run();
@@ -71,9 +72,9 @@ class RenderWorker {
     std::shared_ptr<const RenderRequest> pending_;  // guarded by mutex_
     std::uint64_t submitted_ = 0;                   // guarded by mutex_
     bool quit_ = false;                             // guarded by mutex_
+    bool paused_ = false;                           // guarded by mutex_
     std::shared_ptr<const Frame> latest_;           // guarded by mutex_
     std::atomic<bool> cancel_{false};
-    std::atomic<std::uint64_t> published_{0};
     std::thread thread_;
 };
 

@@ -77,13 +77,7 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
     r.settings.tile_pixels = 1 << 16;  // small wavefronts: a change cancels within a batch
     r.spp_target = s.ui.spp_target;
     r.threads = s.ui.threads;
-    r.paused = s.ui.paused;
     return r;
-}
-
-bool same_camera(const Camera& a, const Camera& b) {
-    return a.eye == b.eye && a.look_at == b.look_at && a.up == b.up &&
-           a.vfov_degrees == b.vfov_degrees;
 }
 
 /// Traces one camera ray per pixel with every method (for the statistics panel).
@@ -456,28 +450,15 @@ int run_viewer(const ViewerOptions& options) {
             glfwGetFramebufferSize(window, &width, &height);
             if (width > 0 && height > 0) {
                 RenderRequest request = make_request(s, width, height);
-                const bool changed = request_id == 0 || request.scene != submitted.scene ||
-                                     !same_camera(request.camera, submitted.camera) ||
-                                     request.method != submitted.method ||
-                                     request.embree_mode != submitted.embree_mode ||
-                                     request.params != submitted.params ||
-                                     request.settings.width != submitted.settings.width ||
-                                     request.settings.height != submitted.settings.height ||
-                                     request.settings.integrator != submitted.settings.integrator ||
-                                     request.settings.primary != submitted.settings.primary ||
-                                     request.settings.max_depth != submitted.settings.max_depth ||
-                                     request.settings.ao_samples != submitted.settings.ao_samples ||
-                                     request.settings.seed != submitted.settings.seed ||
-                                     request.spp_target != submitted.spp_target ||
-                                     request.threads != submitted.threads ||
-                                     request.paused != submitted.paused;
+                const bool changed = request_id == 0 || request != submitted;
                 if (changed) {
-                    // Only pausing or raising the target keeps the film: resubmitting restarts.
+                    // A new request restarts the film (pausing does not: see below).
                     submitted = request;
                     request_id = worker.submit(std::move(request));
                 }
             }
 
+            worker.set_paused(s.ui.paused);
             // Show the newest pass (of the request in force); upload only when it is new.
             if (s.frame && (s.frame != uploaded || s.view != uploaded_view)) {
                 if (s.frame != uploaded) display.upload_render(s.frame->image);

@@ -57,6 +57,32 @@ TEST(RenderWorker, RendersPreviewThenAccumulatesToTheTarget) {
     EXPECT_EQ(worker.latest()->spp, 4);  // stops at the target
 }
 
+TEST(RenderWorker, PauseStopsAccumulatingAndResumeKeepsTheFilm) {
+    RenderWorker worker;
+    RenderRequest request =
+        small_request(std::make_shared<const Scene>(make_builtin_scene("builtin:cornell")));
+    request.spp_target = 64;
+    const std::uint64_t id = worker.submit(request);
+    ASSERT_TRUE(wait_for(worker, id, 2));
+    worker.set_paused(true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the pass in flight ends
+    const int paused_at = worker.latest()->spp;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    EXPECT_EQ(worker.latest()->spp, paused_at);
+    worker.set_paused(false);
+    // Resuming goes on from the paused film: no frame of this request shows fewer samples.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+    int spp = paused_at;
+    while (spp < 64 && std::chrono::steady_clock::now() < deadline) {
+        const auto frame = worker.latest();
+        ASSERT_EQ(frame->request, id);
+        ASSERT_GE(frame->spp, paused_at);
+        spp = frame->spp;
+    }
+    EXPECT_EQ(spp, 64);
+    EXPECT_GE(paused_at, 2);
+}
+
 TEST(RenderWorker, BadParametersArriveAsAnErrorFrame) {
     RenderWorker worker;
     RenderRequest request =
@@ -89,12 +115,12 @@ TEST(RenderWorker, SurvivesAThousandRandomParameterChanges) {
         request.params.sample_count = 1 + rng() % 200;
         request.params.filter_skip = rng() % 2;
         request.settings.width = 8 + int(rng() % 24);
-        request.paused = rng() % 10 == 0;
+        worker.set_paused(rng() % 10 == 0);
         id = worker.submit(request);
         if (rng() % 8 == 0) std::this_thread::sleep_for(std::chrono::microseconds(rng() % 2000));
         (void)worker.latest();
     }
-    request.paused = false;
+    worker.set_paused(false);
     id = worker.submit(request);
     const auto frame = wait_for(worker, id, request.spp_target);
     ASSERT_TRUE(frame) << "the worker did not finish the last request";

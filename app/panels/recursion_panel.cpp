@@ -51,10 +51,8 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
 }  // namespace
 
 void draw_recursion_panel(ViewerState& s) {
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(350, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(360, 300), ImGuiCond_FirstUseEver);
-    (void)display;
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // opened when wanted
     if (!ImGui::Begin("Recursion explorer")) {
         ImGui::End();

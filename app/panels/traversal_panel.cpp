@@ -13,7 +13,6 @@ void draw_traversal_panel(ViewerState& s) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(720, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(250, 300), ImGuiCond_FirstUseEver);
-    (void)display;
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // opened when wanted
     if (!ImGui::Begin("Traversal debugger")) {
         ImGui::End();

@@ -18,7 +18,7 @@ bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
     if (!wf.trace_camera(rays, hits)) return false;
 
     const float far = std::max(wf.shading.diagonal, 1e-30f);
-    const Aabb box = wf.scene.bounds();
+    const Aabb& box = wf.shading.bounds;
     const float eye_to_far =
         box.empty() ? far
                     : glm::length(wf.projection.eye() - 0.5f * (box.lo + box.hi)) + 0.5f * far;

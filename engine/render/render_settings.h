@@ -28,6 +28,8 @@ struct RenderSettings {
                                // used by `path` only when the scene has no emitters
     std::uint32_t seed = 0;
     std::size_t tile_pixels = std::size_t(1) << 18;  // pixels traced as one wavefront
+
+    bool operator==(const RenderSettings&) const = default;
 };
 
 /// Throws InputError naming the first setting out of range.

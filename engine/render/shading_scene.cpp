@@ -6,8 +6,8 @@ namespace edacrt {
 
 ShadingScene::ShadingScene(const Scene& scene) : lights(scene) {
     for (const Material& material : scene.materials) bsdfs.push_back(make_bsdf(material, &notes));
-    const Aabb box = scene.bounds();
-    diagonal = box.empty() ? 0.0f : glm::length(box.hi - box.lo);
+    bounds = scene.bounds();
+    diagonal = bounds.empty() ? 0.0f : glm::length(bounds.hi - bounds.lo);
 }
 
 Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit) {

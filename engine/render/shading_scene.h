@@ -19,7 +19,8 @@ struct ShadingScene {
 
     std::vector<Bsdf> bsdfs;  // one per material
     Lights lights;
-    float diagonal;                  // of the scene's bounding box
+    Aabb bounds;
+    float diagonal;                  // of `bounds`
     std::vector<std::string> notes;  // MTL settings that are approximated
 };
 

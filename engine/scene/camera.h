@@ -15,6 +15,8 @@ struct Camera {
     glm::vec3 look_at{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float vfov_degrees = 45.0f;
+
+    bool operator==(const Camera&) const = default;
 };
 
 /// A camera that looks at the box from the +z side (the open side of a Cornell box) and sees

@@ -113,7 +113,7 @@ class Recursion {
              int side_in_parent = 0) {
         if (ray_count == 0) return;
         [[maybe_unused]] Clock::time_point start;
-        [[maybe_unused]] std::int32_t node = -1;   // recorded node
+        [[maybe_unused]] std::int32_t node = -1;      // recorded node
         [[maybe_unused]] std::int64_t followed = -1;  // recorded visit of the followed ray
         if constexpr (kStats) {
             if (nodes_ && nodes_->size() < max_nodes_) {
@@ -169,7 +169,8 @@ class Recursion {
                 record.chosen = split.last_left_bin;
                 record.left_first = split.left_first;
             }
-            if (followed >= 0) (*visits_)[std::size_t(followed)].first_side_right = !split.left_first;
+            if (followed >= 0)
+                (*visits_)[std::size_t(followed)].first_side_right = !split.left_first;
         }
         // Partition the triangles by the chosen bin boundary (Section 3.1).
         std::uint32_t* middle = std::partition(tris, tris + tri_count, [&](std::uint32_t t) {

@@ -376,7 +376,7 @@ int run_viewer(const ViewerOptions& options) {
         RenderWorker worker;
         RenderRequest submitted;
         std::uint64_t request_id = 0;
-        std::shared_ptr<const Frame> uploaded;
+        std::shared_ptr<const Frame> uploaded, shown_last_frame;
         View uploaded_view = View::render;
         float heat_max = 1.0f;
         std::future<std::vector<MethodTotals>> comparison;
@@ -515,8 +515,12 @@ int run_viewer(const ViewerOptions& options) {
 
             ++frame_number;
             std::string screenshot;
+            // A pass counts as shown once it has been on screen for a whole frame: ImGui sizes
+            // new table columns from the previous frame's contents.
+            const bool settled = s.frame && s.frame == shown_last_frame;
+            shown_last_frame = s.frame;
             const int shown_spp =
-                s.frame && s.frame->request == request_id && !s.frame->preview ? s.frame->spp : 0;
+                settled && s.frame->request == request_id && !s.frame->preview ? s.frame->spp : 0;
             try {
                 if (script) {
                     script->step(s, shown_spp, screenshot, quit);

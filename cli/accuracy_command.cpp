@@ -48,7 +48,7 @@ std::vector<RaySet> make_ray_sets(const Scene& scene, const Camera& camera, int 
         const auto prim = std::int32_t(rng() % scene.triangle_count());
         const float a = unit(rng), b = unit(rng) * (1.0f - a);
         const Triangle tri = scene.corners(std::size_t(prim));
-        const glm::vec3 n = glm::normalize(geometric_normal(tri));
+        const glm::vec3 n = unit_normal(tri);
         const glm::vec3 p = (1 - a - b) * tri.p0 + a * tri.p1 + b * tri.p2;
         return make_surface(scene, Ray{p + n, -n}, Hit{1.0f, prim, a, b});
     };

@@ -196,7 +196,7 @@ TEST_P(SelfIntersection, GrazingRaysNeverHitTheirOwnTriangle) {
                 const float v = 0.3f;
                 Hit hit{0.0f, std::int32_t(prim), u, v};
                 // A ray that arrives at the point from outside, so the surface faces it.
-                const glm::vec3 n = glm::normalize(geometric_normal(tri));
+                const glm::vec3 n = unit_normal(tri);
                 const glm::vec3 p = (1 - u - v) * tri.p0 + u * tri.p1 + v * tri.p2;
                 const Ray arriving{p + n, -n};
                 const Surface s = make_surface(scene, arriving, hit);

@@ -140,7 +140,7 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
         for (const Hit* h : {&a, &b})
             if (h->hit()) {
                 const glm::vec3 n =
-                    glm::normalize(geometric_normal(scene.corners(std::size_t(h->prim))));
+                    unit_normal(scene.corners(std::size_t(h->prim)));
                 if (std::abs(glm::dot(n, glm::normalize(ray.dir))) < 1e-3f) return true;
             }
         return false;

@@ -23,7 +23,7 @@ struct SurfacePoint {
 inline SurfacePoint surface_point(const Triangle& tri, float u, float v) {
     const float w = 1.0f - u - v;
     const glm::vec3 a = w * tri.p0, b = u * tri.p1, c = v * tri.p2;
-    return {a + b + c, rounding_gamma(7) * (glm::abs(a) + glm::abs(b) + glm::abs(c))};
+    return {a + b + c, rounding_gamma<float>(7) * (glm::abs(a) + glm::abs(b) + glm::abs(c))};
 }
 
 /// The origin for a ray leaving `point` towards `direction`: moved along the unit geometric

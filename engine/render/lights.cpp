@@ -7,7 +7,7 @@
 namespace edacrt {
 
 glm::vec3 unit_normal(const Scene& scene, std::uint32_t prim) {
-    return glm::normalize(geometric_normal(scene.corners(prim)));
+    return unit_normal(scene.corners(prim));
 }
 
 Lights::Lights(const Scene& scene) : pdf_area_(scene.triangle_count(), 0.0f) {
@@ -16,7 +16,7 @@ Lights::Lights(const Scene& scene) : pdf_area_(scene.triangle_count(), 0.0f) {
     for (std::uint32_t prim = 0; prim < scene.triangle_count(); ++prim) {
         const Material& material = scene.materials[scene.triangle_materials[prim]];
         if (!material.emissive()) continue;
-        const double area = 0.5 * double(glm::length(geometric_normal(scene.corners(prim))));
+        const double area = triangle_area(scene.corners(prim));
         const glm::vec3 ke = material.ke;
         const double luminance = 0.2126 * ke.x + 0.7152 * ke.y + 0.0722 * ke.z;
         if (!(area > 0.0) || !(luminance > 0.0)) continue;

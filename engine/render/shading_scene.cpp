@@ -15,7 +15,7 @@ Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit) {
     const Triangle tri = scene.corners(prim);
     Surface s;
     s.point = surface_point(tri, hit.u, hit.v);
-    s.ng_stored = glm::normalize(geometric_normal(tri));
+    s.ng_stored = unit_normal(tri);
     s.ng = glm::dot(s.ng_stored, ray.dir) < 0.0f ? s.ng_stored : -s.ng_stored;
     s.ns = s.ng;
     if (!scene.triangle_normals.empty()) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -15,12 +16,13 @@ namespace edacrt {
 namespace {
 
 /// The context of every query: a filter (called for each candidate hit Embree finds) accepts
-/// only hits our own watertight test accepts too. Embree has no conservative t test, so from
-/// an exact point on a coordinate plane it reports the ray's own triangle at t = 0; with this
-/// filter, rays spawned from surfaces (geometry/offset.h, tmin > 0) do not self-intersect. For
-/// occlusion queries the filter also records the occluder (rtcOccluded* reports only whether a ray
-/// is blocked). Rays carry their index in the batch as their id, so the filter finds each lane's
-/// hit in every mode (1, 8, stream).
+/// a candidate only where our distance test does (triangle.h, hit_distance: t conservatively
+/// positive, within [tmin, tmax]); the inside decision stays Embree's. Embree has no
+/// conservative t test, so from an exact point on a coordinate plane it reports the ray's own
+/// triangle at t = 0; with this filter, rays spawned from surfaces (geometry/offset.h, tmin > 0)
+/// do not self-intersect. For occlusion queries the filter also records the occluder
+/// (rtcOccluded* reports only whether a ray is blocked). Rays carry their index in the batch as
+/// their id, so the filter finds each lane's hit in every mode (1, 8, stream).
 struct FilterContext {
     RTCIntersectContext base;  // first member: Embree passes &base back to the filter
     const Triangle* triangles;
@@ -33,8 +35,6 @@ void filter_candidates(const RTCFilterFunctionNArguments* args) {
     for (unsigned lane = 0; lane < n; ++lane) {
         if (args->valid[lane] != -1) continue;
         const auto prim = RTCHitN_primID(args->hit, n, lane);
-        // During a filter call the candidate's distance is the ray's tfar.
-        const float t = RTCRayN_tfar(args->ray, n, lane);
         const Ray ray{{RTCRayN_org_x(args->ray, n, lane), RTCRayN_org_y(args->ray, n, lane),
                        RTCRayN_org_z(args->ray, n, lane)},
                       {RTCRayN_dir_x(args->ray, n, lane), RTCRayN_dir_y(args->ray, n, lane),
@@ -42,15 +42,14 @@ void filter_candidates(const RTCFilterFunctionNArguments* args) {
                       RTCRayN_tnear(args->ray, n, lane),
                       kInfinity};
         TriangleHit ours;
-        if (!intersect_triangle(make_watertight_ray(ray), context->triangles[prim], ray.tmin,
-                                kInfinity, ours)) {
+        if (!hit_distance(make_watertight_ray(ray), context->triangles[prim], ray.tmin, kInfinity,
+                          ours)) {
             args->valid[lane] = 0;  // reject: Embree goes on looking
             continue;
         }
         if (context->occluders)
-            context->occluders[RTCRayN_id(args->ray, n, lane)] = {t, std::int32_t(prim),
-                                                                  RTCHitN_u(args->hit, n, lane),
-                                                                  RTCHitN_v(args->hit, n, lane)};
+            context->occluders[RTCRayN_id(args->ray, n, lane)] = {ours.t, std::int32_t(prim),
+                                                                  ours.u, ours.v};
     }
 }
 
@@ -62,7 +61,7 @@ RTCRay to_embree(const Ray& ray, std::size_t id) {
     r.dir_x = ray.dir.x;
     r.dir_y = ray.dir.y;
     r.dir_z = ray.dir.z;
-    r.tnear = ray.tmin;
+    r.tnear = std::max(ray.tmin, 0.0f);  // the same query: no method accepts t <= 0
     r.tfar = ray.tmax;
     r.time = 0.0f;
     r.mask = ~0u;
@@ -91,7 +90,7 @@ void set_lane(RTCRayHit8& packet, int lane, const Ray& ray, std::size_t id) {
     packet.ray.dir_x[lane] = ray.dir.x;
     packet.ray.dir_y[lane] = ray.dir.y;
     packet.ray.dir_z[lane] = ray.dir.z;
-    packet.ray.tnear[lane] = ray.tmin;
+    packet.ray.tnear[lane] = std::max(ray.tmin, 0.0f);
     packet.ray.tfar[lane] = ray.tmax;
     packet.ray.time[lane] = 0.0f;
     packet.ray.mask[lane] = ~0u;
@@ -112,6 +111,52 @@ void make_packet(std::span<const Ray> rays, std::size_t begin, std::size_t end, 
     }
 }
 
+/// Embree computes in float with denormals flushed to zero: products of coordinates overflow
+/// beyond ~1e12 (measured: wrong triangles from 1e13 on, an assertion abort from 1.8e18, hits at
+/// t = inf) and the edge products of triangles below ~1e-18 flush to zero (nothing is hit).
+/// Measured on spheres from 1e-34 to 1e18, near and far from the origin (hard_cases_test.cpp).
+constexpr double kLargestCoordinate = 1e12;
+constexpr double kSmallestDoubledArea = 1e-36;
+
+std::string format_number(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", x);
+    return text;
+}
+
+/// Throws InputError for a scene Embree cannot trace correctly.
+void check_scene_for_embree(const Scene& scene) {
+    double largest = 0.0;
+    for (const glm::vec3& p : scene.positions)
+        largest = std::max(
+            {largest, std::abs(double(p.x)), std::abs(double(p.y)), std::abs(double(p.z))});
+    if (largest > kLargestCoordinate)
+        throw InputError("Embree cannot trace " + scene.source + ": coordinates reach " +
+                         format_number(largest) +
+                         ", beyond the 1e12 where its float arithmetic "
+                         "overflows; use another method");
+    std::size_t tiny = 0;
+    for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
+        const double doubled_area = 2.0 * triangle_area(scene.corners(i));
+        tiny += doubled_area > 0.0 && doubled_area < kSmallestDoubledArea;
+    }
+    if (tiny > 0)
+        throw InputError("Embree cannot trace " + scene.source + ": " + std::to_string(tiny) +
+                         " triangles are smaller than ~1e-18 across, where Embree's products "
+                         "flush to zero and nothing is hit; use another method");
+}
+
+/// Throws InputError for a ray Embree cannot trace (see check_scene_for_embree).
+void check_ray_for_embree(const Ray& ray, std::size_t index) {
+    const glm::vec3 o = glm::abs(ray.org), d = glm::abs(ray.dir);
+    const double org = std::max({o.x, o.y, o.z}), dir = std::max({d.x, d.y, d.z});
+    if (org > kLargestCoordinate || dir > kLargestCoordinate || dir < 1.0 / kLargestCoordinate)
+        throw InputError("Embree cannot trace ray " + std::to_string(index) + ": its origin (" +
+                         format_number(org) + ") or direction (" + format_number(dir) +
+                         ") is outside what its float arithmetic covers (origin up to 1e12, "
+                         "direction 1e-12 to 1e12); use another method");
+}
+
 }  // namespace
 
 EmbreeTracer::EmbreeTracer(EmbreeMode mode) : mode_(mode) {
@@ -129,6 +174,8 @@ EmbreeTracer::~EmbreeTracer() {
 
 void EmbreeTracer::set_scene(const Scene& scene) {
     if (scene_) rtcReleaseScene(scene_);
+    scene_ = nullptr;  // no stale scene to trace if this one is refused
+    check_scene_for_embree(scene);
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -214,11 +261,44 @@ void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Q
             break;
         }
     }
+    if (query == Query::closest) refine_closest_hits(rays, hits, begin, end);
+}
+
+void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit> hits,
+                                       std::size_t begin, std::size_t end) const {
+    for (std::size_t i = begin; i != end; ++i) {
+        if (!hits[i].hit()) continue;
+        const WatertightRay wray = make_watertight_ray(rays[i]);
+        const Triangle& tri = triangles_[std::size_t(hits[i].prim)];
+        TriangleHit ours;
+        if (!hit_distance(wray, tri, rays[i].tmin, rays[i].tmax, ours)) {
+            // Traced without the filter (tmin = 0), yet not conservatively in front: again,
+            // filtered, so Embree looks beyond it.
+            FilterContext context;
+            rtcInitIntersectContext(&context.base);
+            context.base.filter = filter_candidates;
+            context.triangles = triangles_.data();
+            context.occluders = nullptr;
+            RTCRayHit ray_hit = to_embree_hit(rays[i], i);
+            rtcIntersect1(scene_, &context.base, &ray_hit);
+            hits[i] = from_embree(ray_hit);
+            if (!hits[i].hit()) continue;
+            if (!hit_distance(wray, triangles_[std::size_t(hits[i].prim)], rays[i].tmin,
+                              rays[i].tmax, ours)) {
+                hits[i] = Hit{};
+                continue;
+            }
+        }
+        hits[i].t = ours.t;
+        hits[i].u = ours.u;
+        hits[i].v = ours.v;
+    }
 }
 
 TraceStats EmbreeTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                      TraceDetail*) {
-    assert(rays.size() == hits.size() && scene_);
+    if (!scene_) throw InputError("Embree: no scene to trace (set_scene failed or never ran)");
+    for (std::size_t i = 0; i < rays.size(); ++i) check_ray_for_embree(rays[i], i);
     // Ranges of whole packets, large enough for streams to pay off.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
         trace_range(rays, hits, query, range.begin(), range.end());

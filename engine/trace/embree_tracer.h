@@ -9,8 +9,9 @@ namespace edacrt {
 
 /// The industrial reference: Embree 3, its BVH built in set_scene() (per frame) with the robust
 /// (watertight) flag, traced over ranges of rays in parallel with single rays (rtcIntersect1),
-/// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says. A filter accepts
-/// only candidates our watertight test confirms, so spawned rays do not self-intersect.
+/// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says. Embree decides
+/// which triangles a ray passes through; the distances are ours (a filter accepts only
+/// candidates our distance test accepts, so spawned rays do not self-intersect).
 class EmbreeTracer final : public Tracer {
   public:
     explicit EmbreeTracer(EmbreeMode mode = kDefaultEmbreeMode);
@@ -28,6 +29,11 @@ class EmbreeTracer final : public Tracer {
   private:
     void trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query, std::size_t begin,
                      std::size_t end);
+    /// Embree's closest hits with our distance and barycentrics (triangle.h, hit_distance):
+    /// Embree's float t of a sliver can be off by 1% where its edge functions cancel, ours is
+    /// refined in double where its error bound says so.
+    void refine_closest_hits(std::span<const Ray> rays, std::span<Hit> hits, std::size_t begin,
+                             std::size_t end) const;
 
     EmbreeMode mode_;
     std::vector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)

@@ -1,0 +1,109 @@
+#include "geometry/triangle.h"
+
+#include <glm/geometric.hpp>
+
+namespace edacrt {
+namespace {
+
+/// Accepts the distance and barycentrics of `s` when t lies in [tmin, tmax], is finite as a
+/// float and exceeds `error`.
+template <typename Real>
+bool accept_distance(const ShearedTriangle<Real>& s, Real error, float tmin, float tmax,
+                     TriangleHit& out) {
+    const Real det = s.u + s.v + s.w;
+    const Real inv_det = 1 / det;
+    const Real t = (s.u * s.az + s.v * s.bz + s.w * s.cz) * inv_det;
+    const float t_float = float(t);
+    if (!(t_float >= tmin && t_float <= tmax && t_float < kInfinity && t > error)) return false;
+    out = {t_float, float(s.v * inv_det), float(s.w * inv_det)};
+    return true;
+}
+
+}  // namespace
+
+ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
+    const glm::dvec3 org(r.org);
+    const glm::dvec3 A = glm::dvec3(tri.p0) - org;
+    const glm::dvec3 B = glm::dvec3(tri.p1) - org;
+    const glm::dvec3 C = glm::dvec3(tri.p2) - org;
+    const double sz = 1.0 / double(r.dir[r.kz]);
+    const double sx = double(r.dir[r.kx]) * sz, sy = double(r.dir[r.ky]) * sz;
+    ShearedTriangle<double> s;
+    s.ax = A[r.kx] - sx * A[r.kz];
+    s.ay = A[r.ky] - sy * A[r.kz];
+    s.bx = B[r.kx] - sx * B[r.kz];
+    s.by = B[r.ky] - sy * B[r.kz];
+    s.cx = C[r.kx] - sx * C[r.kz];
+    s.cy = C[r.ky] - sy * C[r.kz];
+    s.u = s.cx * s.by - s.cy * s.bx;
+    s.v = s.ax * s.cy - s.ay * s.cx;
+    s.w = s.bx * s.ay - s.by * s.ax;
+    s.az = sz * A[r.kz];
+    s.bz = sz * B[r.kz];
+    s.cz = sz * C[r.kz];
+    return s;
+}
+
+bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
+                          TriangleHit& out) {
+    // t from the plane: t = n.(p0 - o) / n.d. The corners are floats, so their differences are
+    // exact in double, the products of two differences are exact, and each component of n is
+    // rounded once: a sliver's plane keeps its orientation. (Weighting the sheared z by the
+    // barycentrics instead cancels twice for a long triangle hit close to its middle: 1e-4
+    // relative in double for a 1:1e6 sliver.)
+    const glm::dvec3 p0(tri.p0);
+    const glm::dvec3 n = glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
+    const glm::dvec3 a = p0 - glm::dvec3(r.org), d(r.dir);
+    const double den = glm::dot(n, d);
+    if (den == 0.0) return false;  // parallel to the plane
+    const double t = glm::dot(n, a) / den;
+    // Each product and sum rounds once (n already once): the numerator is within gamma(4) of
+    // sum |n_i a_i|, the denominator within gamma(3) of sum |n_i d_i|; gamma(6) covers both and
+    // the inexact differences of corners far apart in magnitude.
+    const glm::dvec3 na = glm::abs(n * a), nd = glm::abs(n * d);
+    const double error = rounding_gamma<double>(6) *
+                             (na.x + na.y + na.z + std::abs(t) * (nd.x + nd.y + nd.z)) /
+                             std::abs(den) +
+                         rounding_gamma<double>(2) * std::abs(t);
+    const float t_float = float(t);
+    if (!(t_float >= tmin && t_float <= tmax && t_float < kInfinity && t > error)) return false;
+    const ShearedTriangle<double> s = shear_triangle_in_double(r, tri);
+    const double det = s.u + s.v + s.w;
+    if (det == 0.0) return false;  // seen edge-on
+    out = {t_float, float(s.v / det), float(s.w / det)};
+    return true;
+}
+
+bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
+                             const ShearedTriangle<float>& f, float tmin, float tmax,
+                             TriangleHit& out) {
+    // The same sheared floats, with edge functions whose products are exact in double.
+    ShearedTriangle<double> s{f.ax, f.ay, f.az, f.bx, f.by, f.bz, f.cx, f.cy, f.cz, 0, 0, 0};
+    s.u = s.cx * s.by - s.cy * s.bx;
+    s.v = s.ax * s.cy - s.ay * s.cx;
+    s.w = s.bx * s.ay - s.by * s.ax;
+    if ((s.u < 0 || s.v < 0 || s.w < 0) && (s.u > 0 || s.v > 0 || s.w > 0)) return false;
+    const double det = s.u + s.v + s.w;
+    if (det == 0) return false;
+    // The corners carry float rounding (unit 2^-24), evaluated in double for range.
+    const double error =
+        s.distance_error<float>(std::abs(double(r.dir[r.kx])), std::abs(double(r.dir[r.ky])));
+    const double t = (s.u * s.az + s.v * s.bz + s.w * s.cz) / det;
+    if (error <= t * double(kTrustedDistanceError))
+        return accept_distance(s, error, tmin, tmax, out);
+    return refine_hit_in_double(r, tri, tmin, tmax, out);
+}
+
+glm::vec3 unit_normal(const Triangle& tri) {
+    const glm::dvec3 p0(tri.p0);
+    const glm::dvec3 n = glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
+    const double length = glm::length(n);
+    return length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
+}
+
+double triangle_area(const Triangle& tri) {
+    const glm::dvec3 p0(tri.p0);
+    return 0.5 * glm::length(glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0));
+}
+
+}  // namespace edacrt

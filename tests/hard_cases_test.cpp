@@ -20,6 +20,7 @@
 
 #include "geometry/offset.h"
 #include "scene/builtin_scenes.h"
+#include "scene/obj_loader.h"
 #include "trace/tracer.h"
 #include "util/error.h"
 
@@ -441,6 +442,71 @@ TEST(HardCases, HugeAndTinyObjectsInOneScene) {
         embree_refused = 0;
         expect_reference_hits(scene, rays, "mix at " + std::to_string(far), true);
         EXPECT_EQ(embree_refused, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace edacrt
+
+namespace edacrt {
+namespace {
+
+TEST(HardCases, TrianglesAreNumberedInFileOrderDegenerateOnesIncluded) {
+    // A row of unit triangles along x, with degenerate faces (repeated index, coincident corners,
+    // collinear) and a quad (two fan triangles) mixed in: the hit `prim` is the triangle's number
+    // in file order after triangulation, for every method.
+    std::string obj = "v 0 0 0\n";  // 1: the point every degenerate face reuses
+    std::vector<int> proper;        // numbers of the triangles that can be hit
+    int vertex = 2, triangle = 0;
+    for (int k = 0; k < 12; ++k) {
+        const float x = 2.0f * float(k);
+        obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x + 1) + " 0 0\nv " +
+               std::to_string(x) + " 1 0\nv " + std::to_string(x + 1) + " 1 0\n";
+        const std::string a = std::to_string(vertex), b = std::to_string(vertex + 1),
+                          c = std::to_string(vertex + 2);
+        vertex += 4;
+        switch (k % 4) {
+            case 0:
+                obj += "f 1 1 " + a + "\n";
+                break;  // repeated index
+            case 1:
+                obj += "f " + a + " " + a + " " + b + "\n";
+                break;  // coincident
+            case 2:
+                obj += "f " + a + " " + b + " 1\n";
+                break;  // collinear (y = 0)
+            default:    // a quad beside the row (y from 2 to 3)
+                obj += "v " + std::to_string(x) + " 2 0\nv " + std::to_string(x + 1) + " 2 0\nv " +
+                       std::to_string(x + 1) + " 3 0\nv " + std::to_string(x) + " 3 0\n";
+                obj += "f " + std::to_string(vertex) + " " + std::to_string(vertex + 1) + " " +
+                       std::to_string(vertex + 2) + " " + std::to_string(vertex + 3) + "\n";
+                vertex += 4;
+                break;
+        }
+        triangle += k % 4 == 3 ? 2 : 1;  // the degenerate face (or the quad's two triangles)
+        obj += "f " + a + " " + b + " " + c + "\n";
+        proper.push_back(triangle++);
+    }
+    const Scene scene = parse_obj(
+        obj, "row.obj", [](const std::string&) -> std::string { throw InputError("no MTL"); });
+    ASSERT_EQ(scene.triangle_count(), std::size_t(triangle));
+    std::vector<Ray> rays;
+    std::vector<std::int32_t> expected;
+    for (const int prim : proper) {
+        const Triangle tri = scene.corners(std::size_t(prim));
+        const glm::vec3 centroid = (tri.p0 + tri.p1 + tri.p2) / 3.0f;
+        rays.push_back({centroid + glm::vec3(0, 0, 1), {0, 0, -1}});
+        expected.push_back(prim);
+    }
+    for (const Method_& method : all_methods()) {
+        const auto tracer = method.make();
+        tracer->set_scene(scene);
+        std::vector<Hit> hits(rays.size());
+        for (const Query query : {Query::closest, Query::any}) {
+            tracer->trace(rays, hits, query);
+            for (std::size_t i = 0; i < rays.size(); ++i)
+                EXPECT_EQ(hits[i].prim, expected[i]) << method.name << ", ray " << i;
+        }
     }
 }
 

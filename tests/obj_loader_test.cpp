@@ -270,28 +270,28 @@ TEST(ObjLoader, MtlErrorsNameTheMtlFileAndLine) {
                          "m.mtl:2: bad number 'x'"));
 }
 
-TEST(ObjLoader, DegenerateTrianglesAreSkippedAndCountedInOneWarning) {
+TEST(ObjLoader, DegenerateTrianglesKeepFileOrderAndAreCountedInOneWarning) {
     const Scene scene = parse(std::string(kSquare) +
                               "v 0 0 0\n"    // 5: same position as 1
                               "v 2 2 0\n"    // 6: on the diagonal through 1 and 3
-                              "f 1 2 3\n"    // kept: triangle 0
-                              "f 1 1 2\n"    // repeated index
-                              "f 1 5 2\n"    // two corners at the same position
-                              "f 2 3 4\n"    // kept: triangle 1
-                              "f 1 3 6\n");  // collinear
-    const std::vector<Tri> expected = {{0, 1, 2}, {1, 2, 3}};
+                              "f 1 2 3\n"    // triangle 0
+                              "f 1 1 2\n"    // 1: repeated index
+                              "f 1 5 2\n"    // 2: two corners at the same position
+                              "f 2 3 4\n"    // triangle 3
+                              "f 1 3 6\n");  // 4: collinear
+    const std::vector<Tri> expected = {{0, 1, 2}, {0, 0, 1}, {0, 4, 1}, {1, 2, 3}, {0, 2, 5}};
     EXPECT_EQ(scene.triangles, expected);
-    EXPECT_EQ(scene.triangle_materials.size(), 2u);
+    EXPECT_EQ(scene.triangle_materials.size(), 5u);
     ASSERT_EQ(scene.warnings.size(), 1u);
-    EXPECT_EQ(scene.warnings[0], "t.obj: skipped 3 degenerate triangles (zero area)");
+    EXPECT_EQ(scene.warnings[0], "t.obj: 3 degenerate triangles (zero area), never hit");
 }
 
 TEST(ObjLoader, DegenerateFanTrianglesKeepNormalsAligned) {
     // The quad's first fan triangle is degenerate; the second keeps its own normals.
     const Scene scene = parse(std::string(kSquare) + "vn 0 0 1\nvn 1 0 0\nf 1//1 1//1 3//1 4//2\n");
-    ASSERT_EQ(scene.triangles.size(), 1u);
-    EXPECT_EQ(scene.triangles[0], (Tri{0, 2, 3}));
-    EXPECT_EQ(scene.triangle_normals[0], (std::array<std::int32_t, 3>{0, 0, 1}));
+    ASSERT_EQ(scene.triangles.size(), 2u);
+    EXPECT_EQ(scene.triangles[1], (Tri{0, 2, 3}));
+    EXPECT_EQ(scene.triangle_normals[1], (std::array<std::int32_t, 3>{0, 0, 1}));
 }
 
 TEST(ObjLoader, AllTrianglesDegenerateIsAnEmptyScene) {

@@ -112,15 +112,15 @@ class ObjParser {
         reserve();
         std::string_view line;
         while (lines_.next(line)) parse_line(line);
-        if (scene_.triangles.empty()) {
+        if (scene_.triangles.size() == degenerate_) {
             throw InputError(source_ + ": no triangles" +
                              (degenerate_ > 0 ? " (all " + std::to_string(degenerate_) +
                                                     " triangles are degenerate, zero area)"
                                               : " (the file has no faces)"));
         }
         if (degenerate_ > 0) {
-            scene_.warnings.push_back(source_ + ": skipped " + std::to_string(degenerate_) +
-                                      " degenerate triangles (zero area)");
+            scene_.warnings.push_back(source_ + ": " + std::to_string(degenerate_) +
+                                      " degenerate triangles (zero area), never hit");
         }
         if (has_normals_) {
             scene_.normals = std::move(normals_);
@@ -299,10 +299,8 @@ class ObjParser {
 
     void add_triangle(const Corner& a, const Corner& b, const Corner& c) {
         const auto& p = scene_.positions;
-        if (zero_area(p[a.position], p[b.position], p[c.position])) {
-            ++degenerate_;
-            return;
-        }
+        // Kept, so triangles are numbered in file order (the `prim` of hits); never hit.
+        degenerate_ += zero_area(p[a.position], p[b.position], p[c.position]);
         if (scene_.triangles.size() == kMaxElements) fail("too many triangles");
         scene_.triangles.push_back({a.position, b.position, c.position});
         scene_.triangle_materials.push_back(current_use_);

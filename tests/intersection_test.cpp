@@ -128,6 +128,68 @@ TEST(TriangleIntersection, AgreesWithDoublePrecisionOnRandomRays) {
     EXPECT_GT(decided, 100000);
 }
 
+/// Needles (two corners close), slivers (the apex close to the opposite edge) and well-shaped
+/// triangles, aspect ratios 1 to 1e5, at random orientations; rays from 1e-4 to 1 of the size
+/// away towards points near the triangle. Where the crossing is farther from every edge than
+/// float resolution (2^-18 of the coordinates; the direction itself is rounded), the hit/miss
+/// matches a double-precision reference, and t is within 1e-5 of it, relative.
+TEST(TriangleIntersection, NeedlesAndSliversFromCloseByAgreeWithDoublePrecision) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> normal;
+    const auto random_unit = [&] {
+        return glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
+    };
+    int decided = 0, hits = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const double size = std::pow(10.0, 4.0 * unit(rng) - 2.0);
+        const double aspect = std::pow(10.0, 5.0 * unit(rng));
+        const glm::dvec3 centre = 10.0 * (glm::dvec3(unit(rng), unit(rng), unit(rng)) - 0.5);
+        const glm::dvec3 a = random_unit(), b = glm::normalize(glm::cross(a, random_unit()));
+        glm::dvec3 corners[3];
+        if (i % 2) {  // needle: p1, p2 close together, far from p0
+            corners[0] = centre - 0.5 * size * a;
+            corners[1] = centre + 0.5 * size * a;
+            corners[2] = corners[1] + size / aspect * b;
+        } else {  // sliver: apex anywhere along the long edge, size / aspect above it
+            corners[0] = centre - 0.5 * size * a;
+            corners[1] = centre + 0.5 * size * a;
+            corners[2] = centre + (unit(rng) - 0.5) * size * a + size / aspect * b;
+        }
+        const Triangle tri{glm::vec3(corners[0]), glm::vec3(corners[1]), glm::vec3(corners[2])};
+        const double w0 = unit(rng), w1 = unit(rng) * (1.0 - w0);
+        const glm::dvec3 target = glm::dvec3(tri.p0) * (1.0 - w0 - w1) + glm::dvec3(tri.p1) * w0 +
+                                  glm::dvec3(tri.p2) * w1 +
+                                  0.1 * size / aspect * (unit(rng) - 0.5) * b;  // near edges
+        const double distance = size * std::pow(10.0, -4.0 * unit(rng));
+        const glm::vec3 org(target - distance * random_unit());
+        const Ray ray{org, glm::vec3(target) - org};
+        double t, u, v;
+        if (!reference_hit(ray, tri, t, u, v)) continue;
+        // The crossing's distance to each edge: its barycentric times twice the area over that
+        // edge's length.
+        const glm::dvec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
+        const double doubled_area = glm::length(glm::cross(p1 - p0, p2 - p0));
+        const double margin = std::min({(1.0 - u - v) * doubled_area / glm::length(p2 - p1),
+                                        u * doubled_area / glm::length(p2 - p0),
+                                        v * doubled_area / glm::length(p1 - p0)});
+        const double resolution =
+            0x1p-18 * std::max({glm::length(p0), glm::length(p1), glm::length(p2),
+                                glm::length(glm::dvec3(org))});
+        if (std::abs(margin) < resolution || t <= 0.0) continue;
+        ++decided;
+        TriangleHit hit;
+        const bool got = hit_triangle(ray, tri, hit);
+        ASSERT_EQ(got, margin > 0.0) << "ray " << i << ", aspect " << aspect;
+        if (got) {
+            ++hits;
+            ASSERT_NEAR(hit.t, t, 1e-5 * t) << "ray " << i << ", aspect " << aspect;
+        }
+    }
+    EXPECT_GT(decided, 100000);
+    EXPECT_GT(hits, 50000);
+}
+
 // --- Slab test -------------------------------------------------------------------------------
 
 const Aabb kUnitBox{{0, 0, 0}, {1, 1, 1}};

@@ -139,8 +139,7 @@ void expect_agreement(const Scene& scene, const Reference& ref, Tracer& tracer,
     const auto grazing = [&](const Ray& ray, const Hit& a, const Hit& b) {
         for (const Hit* h : {&a, &b})
             if (h->hit()) {
-                const glm::vec3 n =
-                    unit_normal(scene.corners(std::size_t(h->prim)));
+                const glm::vec3 n = unit_normal(scene.corners(std::size_t(h->prim)));
                 if (std::abs(glm::dot(n, glm::normalize(ray.dir))) < 1e-3f) return true;
             }
         return false;
@@ -287,8 +286,11 @@ TEST(EdacrtStats, TestsFewerTrianglesThanNaive) {
     tracer.set_scene(scene);
     const TraceStats stats = tracer.trace(rays, hits, Query::closest);
     EXPECT_EQ(stats.rays, rays.size());
-    EXPECT_GT(stats.ray_box_tests, 0u);
-    EXPECT_LT(stats.ray_triangle_tests, rays.size() * scene.triangle_count() / 20);
+    // Measured: 37 box and 78 triangle tests per camera ray on these 20,480 triangles (naive
+    // makes 20,480 triangle tests per ray); twice that is a regression.
+    EXPECT_GE(stats.ray_box_tests, rays.size());  // at least the root filter
+    EXPECT_LT(stats.ray_box_tests, 75 * rays.size());
+    EXPECT_LT(stats.ray_triangle_tests, 160 * rays.size());
 }
 
 TEST(Bvh, EveryTriangleIsInOneLeafAndChildrenNestInParents) {

@@ -85,10 +85,10 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     if ((s.u < 0 || s.v < 0 || s.w < 0) && (s.u > 0 || s.v > 0 || s.w > 0)) return false;
     const double det = s.u + s.v + s.w;
     if (det == 0) return false;
-    // The corners carry float rounding (unit 2^-24), evaluated in double for range.
-    const double error =
-        s.distance_error<float>(std::abs(double(r.dir[r.kx])), std::abs(double(r.dir[r.ky])));
+    // The corners carry float rounding, evaluated in double for range.
     const double t = (s.u * s.az + s.v * s.bz + s.w * s.cz) / det;
+    const double error =
+        s.distance_error(t, std::abs(double(r.dir[r.kx])), std::abs(double(r.dir[r.ky])));
     if (error <= t * double(kTrustedDistanceError))
         return accept_distance(s, error, tmin, tmax, out);
     return refine_hit_in_double(r, tri, tmin, tmax, out);

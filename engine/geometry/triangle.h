@@ -61,28 +61,37 @@ struct ShearedTriangle {
     Real ax, ay, az, bx, by, bz, cx, cy, cz;
     Real u, v, w;
 
-    /// A bound on the rounding error of the distance (u az + v bz + w cz) / (u + v + w), after
-    /// pbrt-v3 (Pharr, Jakob, Humphreys, section 3.9.6), for corners computed with unit roundoff
-    /// `Unit`: pbrt bounds the error of x - s_x z by gamma(5)(max|x| + max|z|) assuming
-    /// |s_x| <= 1; the factor |s_x| = |dir_kx| (the direction is not normalised, its kz component
-    /// is the largest) is kept, so a far triangle hit along an axis keeps its tight bound. Each
-    /// term is evaluated in Real, so the double path keeps its range at tiny and huge scales.
-    /// For a long thin triangle seen edge-on the bound grows like (length / width) (length / t);
-    /// that is when intersect_triangle refines in double.
-    template <typename Unit>
-    Real distance_error(Real shear_x, Real shear_y) const {
+    /// A bound on the rounding error of t = (u az + v bz + w cz) / (u + v + w) for corners
+    /// computed in float, after pbrt-v3 (Pharr, Jakob, Humphreys, section 3.9.6) with a tighter
+    /// middle term. pbrt bounds the sheared corners' errors, dx = gamma(5)(max|x| + |s_x| max|z|)
+    /// (the |s_x| = |dir_kx| factor kept, so an axis-aligned ray keeps a tight bound), dz =
+    /// gamma(3) max|z|, and from them the edge functions' error de. Perturbing t = N / E by
+    /// errors dN, dE gives t' - t = (dN - t dE) / (E + dE), and dN - t dE = sum de_i (z_i - t)
+    /// + sum e_i dz_i + rounding: the edge function errors weigh the corners' spread in z about
+    /// t, not max|z| as in pbrt. For a small triangle far away that spread is its size, not its
+    /// distance, so the bound stays near 1e-7 t instead of 1e-4 t. For a long thin triangle seen
+    /// from close by the spread is its length and the bound large: intersect_triangle then
+    /// refines in double. Infinite when E may be within rounding of zero. Evaluated in Real, so
+    /// the rare path keeps its range at tiny and huge coordinates.
+    Real distance_error(Real t, Real shear_x, Real shear_y) const {
         const Real max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
         const Real max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
         const Real max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
-        const Real gamma2 = rounding_gamma<Unit>(2), gamma3 = rounding_gamma<Unit>(3),
-                   gamma5 = rounding_gamma<Unit>(5);
+        const Real spread = std::max({std::abs(az - t), std::abs(bz - t), std::abs(cz - t)});
+        const Real gamma2 = rounding_gamma<float>(2), gamma3 = rounding_gamma<float>(3),
+                   gamma5 = rounding_gamma<float>(5);
         const Real delta_z = gamma3 * max_z;
         const Real delta_x = gamma5 * (max_x + shear_x * max_z);
         const Real delta_y = gamma5 * (max_y + shear_y * max_z);
         const Real delta_e = 2 * (gamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
         const Real max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
-        return 3 * (gamma3 * max_e * max_z + delta_e * max_z + delta_z * max_e) /
-               std::abs(u + v + w);
+        // |dE| <= 3 de + the rounding of the sum; the spread about the computed t may be off by
+        // the error itself, which takes another 3 de from the denominator.
+        const Real denominator = std::abs(u + v + w) - 6 * delta_e - 3 * gamma2 * max_e;
+        if (!(denominator > 0)) return std::numeric_limits<Real>::infinity();
+        const Real numerator = 3 * (gamma3 * max_e * max_z + delta_e * spread + delta_z * max_e +
+                                    delta_e * delta_z + gamma2 * max_e * std::abs(t));
+        return numerator / denominator + gamma2 * std::abs(t);
     }
 };
 
@@ -143,7 +152,7 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                                                    float tmin, float tmax, TriangleHit& out) {
     const float inv_det = 1.0f / det;
     const float t = (s.u * s.az + s.v * s.bz + s.w * s.cz) * inv_det;
-    const float error = s.distance_error<float>(std::abs(r.dir[r.kx]), std::abs(r.dir[r.ky]));
+    const float error = s.distance_error(t, std::abs(r.dir[r.kx]), std::abs(r.dir[r.ky]));
     if (error <= t * kTrustedDistanceError && t < kInfinity) [[likely]] {
         if (!(t >= tmin && t <= tmax)) return false;
         out = {t, s.v * inv_det, s.w * inv_det};

@@ -512,3 +512,54 @@ TEST(HardCases, TrianglesAreNumberedInFileOrderDegenerateOnesIncluded) {
 
 }  // namespace
 }  // namespace edacrt
+
+namespace edacrt {
+namespace {
+
+TEST(HardCases, HitsBeyondTheFloatRangeAreMissesNeverInfiniteDistances) {
+    // A triangle at z = 0 and one at z = 3e38 (beside it, at x = 10); rays along +z. A hit at
+    // t = 1e38 or 3e38 is a float; one at 6e38 is not, and cannot be reported as t = inf.
+    Scene scene;
+    scene.source = "far planes";
+    for (const float z : {0.0f, 3e38f}) {
+        const auto base = std::uint32_t(scene.positions.size());
+        const float x = z == 0.0f ? 0.0f : 10.0f;
+        scene.positions.insert(scene.positions.end(),
+                               {{x - 1, -1, z}, {x + 2, -1, z}, {x - 1, 2, z}});
+        scene.triangles.push_back({base, base + 1, base + 2});
+    }
+    scene.triangle_materials.assign(2, 0);
+    scene.materials.resize(1);
+    const std::vector<Ray> rays = {{{0, 0, -1e38f}, {0, 0, 1}},    // t = 1e38
+                                   {{0, 0, -3e38f}, {0, 0, 1}},    // t = 3e38
+                                   {{10, 0, 1.0f}, {0, 0, 1}},     // t = 3e38 (the far one)
+                                   {{10, 0, -3e38f}, {0, 0, 1}},   // t = 6e38: beyond floats
+                                   {{0, 0, -3e38f}, {0, 0, -1}}};  // nothing there
+    const bool expected_hit[] = {true, true, true, false, false};
+    const float expected_t[] = {1e38f, 3e38f, 3e38f, 0, 0};
+    for (const Method_& method : all_methods()) {
+        const auto tracer = method.make();
+        std::vector<Hit> hits(rays.size());
+        try {
+            tracer->set_scene(scene);
+            tracer->trace(rays, hits, Query::closest);
+        } catch (const InputError& e) {
+            // Embree refuses coordinates beyond 1e12 rather than answering wrong.
+            EXPECT_TRUE(method.name.starts_with("embree")) << method.name << ": " << e.what();
+            continue;
+        }
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            EXPECT_EQ(hits[i].hit(), expected_hit[i]) << method.name << ", ray " << i;
+            if (hits[i].hit()) {
+                EXPECT_TRUE(std::isfinite(hits[i].t)) << method.name << ", ray " << i;
+                EXPECT_NEAR(hits[i].t, expected_t[i], 1e-6 * expected_t[i]) << method.name;
+            }
+        }
+        tracer->trace(rays, hits, Query::any);
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            EXPECT_EQ(hits[i].hit(), expected_hit[i]) << method.name << ", any hit, ray " << i;
+    }
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -3,23 +3,6 @@
 #include <glm/geometric.hpp>
 
 namespace edacrt {
-namespace {
-
-/// Accepts the distance and barycentrics of `s` when t lies in [tmin, tmax], is finite as a
-/// float and exceeds `error`.
-template <typename Real>
-bool accept_distance(const ShearedTriangle<Real>& s, Real error, float tmin, float tmax,
-                     TriangleHit& out) {
-    const Real det = s.u + s.v + s.w;
-    const Real inv_det = 1 / det;
-    const Real t = (s.u * s.az + s.v * s.bz + s.w * s.cz) * inv_det;
-    const float t_float = float(t);
-    if (!(t_float >= tmin && t_float <= tmax && t_float < kInfinity && t > error)) return false;
-    out = {t_float, float(s.v * inv_det), float(s.w * inv_det)};
-    return true;
-}
-
-}  // namespace
 
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
     const glm::dvec3 org(r.org);
@@ -77,20 +60,12 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                              const ShearedTriangle<float>& f, float tmin, float tmax,
                              TriangleHit& out) {
-    // The same sheared floats, with edge functions whose products are exact in double.
-    ShearedTriangle<double> s{f.ax, f.ay, f.az, f.bx, f.by, f.bz, f.cx, f.cy, f.cz, 0, 0, 0};
-    s.u = s.cx * s.by - s.cy * s.bx;
-    s.v = s.ax * s.cy - s.ay * s.cx;
-    s.w = s.bx * s.ay - s.by * s.ax;
-    if ((s.u < 0 || s.v < 0 || s.w < 0) && (s.u > 0 || s.v > 0 || s.w > 0)) return false;
-    const double det = s.u + s.v + s.w;
-    if (det == 0) return false;
-    // The corners carry float rounding, evaluated in double for range.
-    const double t = (s.u * s.az + s.v * s.bz + s.w * s.cz) / det;
-    const double error =
-        s.distance_error(t, std::abs(double(r.dir[r.kx])), std::abs(double(r.dir[r.ky])));
-    if (error <= t * double(kTrustedDistanceError))
-        return accept_distance(s, error, tmin, tmax, out);
+    const ShearedTriangle<double> d = shear_triangle_in_double(r, tri);
+    const double u = edge_uncertain(f.u, f.cx * f.by, f.cy * f.bx) ? d.u : double(f.u);
+    const double v = edge_uncertain(f.v, f.ax * f.cy, f.ay * f.cx) ? d.v : double(f.v);
+    const double w = edge_uncertain(f.w, f.bx * f.ay, f.by * f.ax) ? d.w : double(f.w);
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+    if (u + v + w == 0) return false;
     return refine_hit_in_double(r, tri, tmin, tmax, out);
 }
 

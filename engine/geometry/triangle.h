@@ -122,6 +122,17 @@ struct ShearedTriangle {
 /// digits where the float ones cancel (products near 3e4 whose difference is near 5).
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri);
 
+/// Whether the float edge function e = p - q (p, q the two products) may have the wrong sign:
+/// the products cancel to within 2^-18 of their size (a long edge passing close to the ray:
+/// rounding alone is 2^-23 of them, the sheared corners' own error a few times more), or they
+/// are below 2^-100 (denormal products lose digits), or not finite. It depends only on the
+/// edge's two corners, and the triangle across the edge computes q - p, so both triangles
+/// decide alike whether to recompute the edge in double: the test stays watertight.
+[[gnu::always_inline]] inline bool edge_uncertain(float e, float p, float q) {
+    constexpr float kCancellation = 0x1p-18f, kTiny = 0x1p-100f;
+    return !(std::abs(e) > std::max(kCancellation * (std::abs(p) + std::abs(q)), kTiny));
+}
+
 /// A hit's distance is decided in float when its error bound is below this fraction of t
 /// (so float distances are within 2^-17 = 7.6e-6 relative); otherwise it is recomputed in
 /// double. Measured: the double path runs for under 1% of the candidates on camera rays.
@@ -133,10 +144,11 @@ inline constexpr float kTrustedDistanceError = 0x1p-17f;
 bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                           TriangleHit& out);
 
-/// The inside test for the rare cases (an exact zero edge function, which may be rounding, or
-/// a determinant whose float products went denormal or overflowed): decided in double, where
-/// the products of the sheared floats are exact, as Woop et al. prescribe. Out of line so the
-/// common path stays small enough to inline into the traversal loops.
+/// The inside test when some edge function is uncertain in float (edge_uncertain: an exact or
+/// near zero, denormal or overflowing products): those edges are recomputed in double from the
+/// inputs (an exact zero there still counts as on the edge, as in Woop et al.), the others keep
+/// their float sign; the distance is then computed in double. Out of line so the common path
+/// stays small enough to inline into the traversal loops.
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                              const ShearedTriangle<float>& s, float tmin, float tmax,
                              TriangleHit& out);
@@ -170,19 +182,20 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     return std::abs(det) >= kSmallestSafeDeterminant && std::abs(det) <= kLargestSafeDeterminant;
 }
 
-/// Intersects the ray with the triangle: Woop's float inside test (watertight), then
-/// decide_distance. Returns true for a hit with tmin <= t <= tmax, t finite and conservatively
-/// positive. Both faces are hit; a degenerate (zero-area as seen from the ray) triangle is
-/// never hit.
+/// Intersects the ray with the triangle: Woop's float inside test, with every edge function
+/// whose sign float cannot decide (edge_uncertain) recomputed in double, then decide_distance.
+/// Returns true for a hit with tmin <= t <= tmax, t finite and conservatively positive. Both
+/// faces are hit; a degenerate (zero-area as seen from the ray) triangle is never hit.
 [[gnu::always_inline]] inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri,
                                                       float tmin, float tmax, TriangleHit& out) {
     const ShearedTriangle<float> s = shear_triangle(r, tri);
-    const float det = s.u + s.v + s.w;
-    if (s.u == 0.0f || s.v == 0.0f || s.w == 0.0f || !safe_determinant(det)) [[unlikely]]
+    if (edge_uncertain(s.u, s.cx * s.by, s.cy * s.bx) |
+        edge_uncertain(s.v, s.ax * s.cy, s.ay * s.cx) |
+        edge_uncertain(s.w, s.bx * s.ay, s.by * s.ax)) [[unlikely]]
         return intersect_triangle_rare(r, tri, s, tmin, tmax, out);
     if ((s.u < 0.0f || s.v < 0.0f || s.w < 0.0f) && (s.u > 0.0f || s.v > 0.0f || s.w > 0.0f))
         return false;
-    return decide_distance(r, tri, s, det, tmin, tmax, out);
+    return decide_distance(r, tri, s, s.u + s.v + s.w, tmin, tmax, out);
 }
 
 /// decide_distance alone, for a triangle another kernel (Embree) found the ray to pass through:

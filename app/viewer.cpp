@@ -8,7 +8,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +19,7 @@
 
 #include "display.h"
 #include "render/film.h"
+#include "render/image.h"
 #include "script.h"
 #include "util/error.h"
 #include "viewer_state.h"
@@ -219,17 +219,19 @@ View parse_view(const std::string& name) {
 
 /// Saves the default framebuffer (what the window shows) as PNG.
 void save_window(const std::string& path, int width, int height) {
-    std::vector<unsigned char> pixels(std::size_t(width) * std::size_t(height) * 3);
+    const std::size_t row = std::size_t(width) * 3;
+    std::vector<std::uint8_t> pixels(row * std::size_t(height));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
     glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    // OpenGL rows start at the bottom.
+    for (std::size_t top = 0, bottom = std::size_t(height) - 1; top < bottom; ++top, --bottom)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(top * row),
+                         pixels.begin() + std::ptrdiff_t((top + 1) * row),
+                         pixels.begin() + std::ptrdiff_t(bottom * row));
     const std::filesystem::path out(path);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    // OpenGL rows start at the bottom.
-    stbi_flip_vertically_on_write(1);
-    if (!stbi_write_png(path.c_str(), width, height, 3, pixels.data(), width * 3))
-        throw InputError(path + ": cannot write the screenshot");
-    stbi_flip_vertically_on_write(0);
+    write_png_rgb8(out, pixels, width, height);
 }
 
 /// Runs the script one step per frame; false when it has ended (or failed: `error` is set).

@@ -9,6 +9,7 @@
 
 #include "cli_runner.h"
 #include "render/image.h"
+#include "test_paths.h"
 
 namespace edacrt {
 namespace {
@@ -97,6 +98,33 @@ TEST_F(RenderCli, BadInputFailsWithAClearMessage) {
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
                                                                     << result.output;
     }
+}
+
+TEST_F(RenderCli, WriteErrorsFailTheCommand) {
+    // /dev/full takes the open and fails the writes; small outputs fail only at the close.
+    std::filesystem::create_symlink("/dev/full", path("full.pfm"));
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"--out /dev/full", "/dev/full: cannot write PNG (No space left on device)"},
+        {"--out " + path("full.pfm"), "full.pfm: cannot write PFM (No space left on device)"},
+        {"--out " + path("x.png") + " --stats /dev/full",
+         "/dev/full: cannot write statistics (No space left on device)"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(kSmall + "--spp 1 " + c.args);
+        EXPECT_EQ(result.exit_code, 1) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: "), std::string::npos) << result.output;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
+                                                                    << result.output;
+    }
+    // The report on stdout is checked too (the subshell keeps stderr on the pipe).
+    const auto report = test::run_command("('" + test::cli_path().string() + "' " + kSmall +
+                                          "--spp 1 --out " + path("x.png") + " >/dev/full)");
+    EXPECT_EQ(report.exit_code, 1) << report.output;
+    EXPECT_NE(report.output.find("edacrt: error: cannot write to standard output"),
+              std::string::npos)
+        << report.output;
 }
 
 }  // namespace

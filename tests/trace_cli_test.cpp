@@ -148,6 +148,29 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
     }
 }
 
+TEST_F(TraceCli, WriteErrorsFailTheCommand) {
+    // /dev/full takes the open and fails the writes; small outputs fail only at the close.
+    write_rays(path("rays.bin"), random_rays(10, 5));
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"trace --scene builtin:cornell --rays " + path("rays.bin") + " --out /dev/full",
+         "/dev/full: cannot write hit file (No space left on device)"},
+        {"trace --scene builtin:cornell --rays " + path("rays.bin") + " --out " + path("h.bin") +
+             " --stats /dev/full",
+         "/dev/full: cannot write statistics (No space left on device)"},
+        {"camera-rays --scene builtin:cornell --width 4 --height 4 --out /dev/full",
+         "/dev/full: cannot write ray file (No space left on device)"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(c.args);
+        EXPECT_EQ(result.exit_code, 1) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: " + c.message), std::string::npos)
+            << c.args << "\n"
+            << result.output;
+    }
+}
+
 TEST_F(TraceCli, HelpExplainsTheCommands) {
     const auto result = test::run_cli("--help");
     EXPECT_EQ(result.exit_code, 0);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt {
 namespace {
@@ -30,10 +31,11 @@ std::vector<Record> read_records(const std::filesystem::path& path, const char* 
 }
 
 template <typename Record>
-void write_records(const std::filesystem::path& path, std::span<const Record> records) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(records.data()), std::streamsize(records.size_bytes()));
-    if (!out) throw InputError(path.string() + ": cannot write file");
+void write_records(const std::filesystem::path& path, std::span<const Record> records,
+                   const char* what) {
+    OutputFile file(path, std::string(what) + " file");
+    file.write(records.data(), records.size_bytes());
+    file.close();
 }
 
 bool finite(const glm::vec3& v) {
@@ -62,7 +64,7 @@ std::vector<Ray> read_rays(const std::filesystem::path& path) {
 }
 
 void write_rays(const std::filesystem::path& path, std::span<const Ray> rays) {
-    write_records(path, rays);
+    write_records(path, rays, "ray");
 }
 
 std::vector<Hit> read_hits(const std::filesystem::path& path) {
@@ -70,7 +72,7 @@ std::vector<Hit> read_hits(const std::filesystem::path& path) {
 }
 
 void write_hits(const std::filesystem::path& path, std::span<const Hit> hits) {
-    write_records(path, hits);
+    write_records(path, hits, "hit");
 }
 
 }  // namespace edacrt

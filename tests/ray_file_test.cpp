@@ -77,6 +77,16 @@ TEST(RayFile, MissingFileIsAnError) {
     EXPECT_NE(error_of("/no/such/rays.bin").find("cannot open ray file"), std::string::npos);
 }
 
+TEST(RayFile, OnlyRegularFilesAreRead) {
+    // A directory "opens" with a size of 2^63 - 1; /dev/zero reports 0 bytes (no rays).
+    for (const std::filesystem::path& path :
+         {std::filesystem::temp_directory_path(), std::filesystem::path("/dev/zero")}) {
+        const std::string message = error_of(path);
+        EXPECT_NE(message.find(path.string() + ": not a regular file"), std::string::npos)
+            << message;
+    }
+}
+
 TEST(RayFile, WriteErrorsAreReported) {
     // /dev/full accepts the open and fails the write, here at the final flush.
     const std::vector<Ray> rays(2);

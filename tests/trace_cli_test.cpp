@@ -121,6 +121,7 @@ TEST_F(TraceCli, CameraRaysAreTheEnginesAndFeedTrace) {
 
 TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
     std::ofstream(path("odd.bin"), std::ios::binary) << std::string(40, '\0');
+    write_rays(path("one.bin"), random_rays(1, 3));
     const struct {
         std::string args, message;
     } cases[] = {
@@ -128,8 +129,12 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
          "not a multiple of the 32-byte ray record"},
         {"trace --scene builtin:cornell --rays /no/rays.bin --out " + path("h.bin"),
          "cannot open ray file"},
-        {"trace --scene /no/scene.obj --rays " + path("odd.bin") + " --out " + path("h.bin"),
-         "error"},
+        {"trace --scene builtin:cornell --rays /dev/zero --out " + path("h.bin"),
+         "/dev/zero: not a regular file"},
+        {"trace --scene builtin:cornell --rays " + dir_.string() + " --out " + path("h.bin"),
+         dir_.string() + ": not a regular file"},
+        {"trace --scene /no/scene.obj --rays " + path("one.bin") + " --out " + path("h.bin"),
+         "edacrt: error: /no/scene.obj: cannot read OBJ file (no such file)"},
         {"render --scene builtin:nothing --out " + path("x.png"), "unknown built-in scene"},
         {"render --scene builtin:cornell --method magic --out " + path("x.png"),
          "unknown method 'magic'"},

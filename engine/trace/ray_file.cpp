@@ -16,16 +16,23 @@ static_assert(std::endian::native == std::endian::little, "ray files are little-
 
 template <typename Record>
 std::vector<Record> read_records(const std::filesystem::path& path, const char* what) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    // Only a regular file has a size to trust: a directory "opens" with a size of 2^63 - 1
+    // and a device such as /dev/zero reports 0 bytes.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw InputError(path.string() + ": not a regular file (a " + what +
+                         " file must be a file of known size)");
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string() + ": cannot open " + what + " file");
-    const std::streamoff size = in.tellg();
-    if (size % std::streamoff(sizeof(Record)) != 0)
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(path.string() + ": cannot read the size (" + ec.message() + ")");
+    if (size % sizeof(Record) != 0)
         throw InputError(path.string() + ": size " + std::to_string(size) +
                          " bytes is not a multiple of the " + std::to_string(sizeof(Record)) +
                          "-byte " + what + " record");
     std::vector<Record> records(std::size_t(size) / sizeof(Record));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(records.data()), size))
+    if (!in.read(reinterpret_cast<char*>(records.data()), std::streamsize(size)))
         throw InputError(path.string() + ": read error");
     return records;
 }

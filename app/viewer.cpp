@@ -196,9 +196,11 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         p.sampling = number() != 0;
     else if (key == "sampling-seed")
         p.seed = std::uint32_t(number());
-    else if (key == "exposure")
-        s.exposure = float(number());
-    else if (key == "scene")
+    else if (key == "exposure") {
+        const auto exposure = float(number());
+        validate_exposure(exposure);
+        s.exposure = exposure;
+    } else if (key == "scene")
         s.pending_loads.push_back(value);
     else if (key == "level")
         s.explorer_level = int(number());

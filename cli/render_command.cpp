@@ -39,6 +39,7 @@ void run(const RenderOptions& o) {
     if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
     validate(settings);
     const ToneMap tone = parse_tone_map(o.tone_map);
+    validate_exposure(o.exposure);
     if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
         throw InputError("--time-budget must be a finite number of seconds >= 0");
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early

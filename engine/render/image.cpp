@@ -20,7 +20,7 @@ namespace edacrt {
 namespace {
 
 float linear_to_srgb(float c) {
-    c = std::clamp(c, 0.0f, 1.0f);
+    c = c > 0.0f ? std::min(c, 1.0f) : 0.0f;  // NaN too becomes 0, not an undefined lround
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 

@@ -20,6 +20,7 @@
 #include "display.h"
 #include "render/film.h"
 #include "render/image.h"
+#include "render/render_memory.h"
 #include "script.h"
 #include "util/error.h"
 #include "viewer_state.h"
@@ -78,6 +79,36 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
     r.spp_target = s.ui.spp_target;
     r.threads = s.ui.threads;
     return r;
+}
+
+// Bytes per pixel the viewer holds besides the renderer: up to three published frames (the
+// worker's newest, the one shown, the one shown before), the first pass's per-ray statistics
+// twice (captured and published), the driver's float texture (RGBA) and the heat map's values
+// and texture.
+constexpr std::uint64_t kViewerBytesPerPixel =
+    3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) + 4 * sizeof(float) + 2 * sizeof(float);
+
+/// A new resolution (slider or window size) is taken only if the render fits in memory.
+/// Otherwise the error shows (and is printed once) and the previous resolution stays, the
+/// slider included. Returns false when there is no resolution to render at yet.
+bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest& submitted) {
+    if (request.settings.width == submitted.settings.width &&
+        request.settings.height == submitted.settings.height)
+        return true;
+    try {
+        check_render_memory(request.settings, kViewerBytesPerPixel);
+        s.resolution_error.clear();
+        s.accepted_resolution_scale = s.ui.resolution_scale;
+        return true;
+    } catch (const InputError& e) {
+        if (s.resolution_error != e.what())
+            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        s.resolution_error = e.what();
+        s.ui.resolution_scale = s.accepted_resolution_scale;
+        request.settings.width = submitted.settings.width;
+        request.settings.height = submitted.settings.height;
+        return submitted.settings.width > 0;
+    }
 }
 
 /// Traces one camera ray per pixel with every method (for the statistics panel).
@@ -454,7 +485,8 @@ int run_viewer(const ViewerOptions& options) {
             glfwGetFramebufferSize(window, &width, &height);
             if (width > 0 && height > 0) {
                 RenderRequest request = make_request(s, width, height);
-                const bool changed = request_id == 0 || request != submitted;
+                const bool changed = fit_resolution(s, request, submitted) &&
+                                     (request_id == 0 || request != submitted);
                 if (changed) {
                     // A new request restarts the film (pausing does not: see below).
                     submitted = request;

@@ -34,6 +34,7 @@ std::uint64_t RenderWorker::submit(RenderRequest request) {
         std::lock_guard lock(mutex_);
         pending_ = std::make_shared<const RenderRequest>(std::move(request));
         id = ++submitted_;
+        idle_ = false;
         cancel_ = true;  // under the lock, so it cannot cancel the request it announces
     }
     wake_.notify_all();
@@ -53,9 +54,15 @@ void RenderWorker::publish(std::shared_ptr<const Frame> frame) {
 void RenderWorker::set_paused(bool paused) {
     {
         std::lock_guard lock(mutex_);
+        if (paused_ && !paused) idle_ = false;  // the worker looks again before it is idle
         paused_ = paused;
     }
     wake_.notify_all();
+}
+
+bool RenderWorker::wait_idle(std::chrono::milliseconds timeout) const {
+    std::unique_lock lock(mutex_);
+    return idle_changed_.wait_for(lock, timeout, [&] { return idle_; });
 }
 
 void RenderWorker::run() {
@@ -70,11 +77,19 @@ void RenderWorker::run() {
     for (;;) {
         {
             std::unique_lock lock(mutex_);
-            wake_.wait(lock, [&] {
+            const auto has_work = [&] {
                 return quit_ || pending_ ||
                        (current && !paused_ &&
                         (fresh || (renderer && renderer->film().passes() < current->spp_target)));
-            });
+            };
+            while (!has_work()) {
+                if (!idle_) {  // again after a wake-up that brought no work (resume at target)
+                    idle_ = true;
+                    idle_changed_.notify_all();
+                }
+                wake_.wait(lock);
+            }
+            idle_ = false;
             if (quit_) return;
             if (pending_) {
                 current = std::move(pending_);

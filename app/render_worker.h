@@ -5,6 +5,7 @@
 // publishes each as a Frame. The UI never waits for the renderer: submit() and latest() only
 // take a mutex held for a pointer swap.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -63,16 +64,23 @@ class RenderWorker {
     /// The newest published frame (null before the first).
     std::shared_ptr<const Frame> latest() const;
 
+    /// Blocks until the worker has nothing to do (target reached, paused, or an error) and
+    /// waits for a change; false when `timeout` passed first. No frame is published while it
+    /// stays idle.
+    bool wait_idle(std::chrono::milliseconds timeout) const;
+
   private:
     void run();
     void publish(std::shared_ptr<const Frame> frame);
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;
+    mutable std::condition_variable idle_changed_;
     std::shared_ptr<const RenderRequest> pending_;  // guarded by mutex_
     std::uint64_t submitted_ = 0;                   // guarded by mutex_
     bool quit_ = false;                             // guarded by mutex_
     bool paused_ = false;                           // guarded by mutex_
+    bool idle_ = false;                             // guarded by mutex_
     std::shared_ptr<const Frame> latest_;           // guarded by mutex_
     std::atomic<bool> cancel_{false};
     std::thread thread_;

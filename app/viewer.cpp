@@ -8,7 +8,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +19,8 @@
 
 #include "display.h"
 #include "render/film.h"
+#include "render/image.h"
+#include "render/render_memory.h"
 #include "script.h"
 #include "util/error.h"
 #include "viewer_state.h"
@@ -78,6 +79,36 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
     r.spp_target = s.ui.spp_target;
     r.threads = s.ui.threads;
     return r;
+}
+
+// Bytes per pixel the viewer holds besides the renderer: up to three published frames (the
+// worker's newest, the one shown, the one shown before), the first pass's per-ray statistics
+// twice (captured and published), the driver's float texture (RGBA) and the heat map's values
+// and texture.
+constexpr std::uint64_t kViewerBytesPerPixel =
+    3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) + 4 * sizeof(float) + 2 * sizeof(float);
+
+/// A new resolution (slider or window size) is taken only if the render fits in memory.
+/// Otherwise the error shows (and is printed once) and the previous resolution stays, the
+/// slider included. Returns false when there is no resolution to render at yet.
+bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest& submitted) {
+    if (request.settings.width == submitted.settings.width &&
+        request.settings.height == submitted.settings.height)
+        return true;
+    try {
+        check_render_memory(request.settings, kViewerBytesPerPixel);
+        s.resolution_error.clear();
+        s.accepted_resolution_scale = s.ui.resolution_scale;
+        return true;
+    } catch (const InputError& e) {
+        if (s.resolution_error != e.what())
+            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        s.resolution_error = e.what();
+        s.ui.resolution_scale = s.accepted_resolution_scale;
+        request.settings.width = submitted.settings.width;
+        request.settings.height = submitted.settings.height;
+        return submitted.settings.width > 0;
+    }
 }
 
 /// Traces one camera ray per pixel with every method (for the statistics panel).
@@ -196,9 +227,11 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         p.sampling = number() != 0;
     else if (key == "sampling-seed")
         p.seed = std::uint32_t(number());
-    else if (key == "exposure")
-        s.exposure = float(number());
-    else if (key == "scene")
+    else if (key == "exposure") {
+        const auto exposure = float(number());
+        validate_exposure(exposure);
+        s.exposure = exposure;
+    } else if (key == "scene")
         s.pending_loads.push_back(value);
     else if (key == "level")
         s.explorer_level = int(number());
@@ -219,17 +252,19 @@ View parse_view(const std::string& name) {
 
 /// Saves the default framebuffer (what the window shows) as PNG.
 void save_window(const std::string& path, int width, int height) {
-    std::vector<unsigned char> pixels(std::size_t(width) * std::size_t(height) * 3);
+    const std::size_t row = std::size_t(width) * 3;
+    std::vector<std::uint8_t> pixels(row * std::size_t(height));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
     glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    // OpenGL rows start at the bottom.
+    for (std::size_t top = 0, bottom = std::size_t(height) - 1; top < bottom; ++top, --bottom)
+        std::swap_ranges(pixels.begin() + std::ptrdiff_t(top * row),
+                         pixels.begin() + std::ptrdiff_t((top + 1) * row),
+                         pixels.begin() + std::ptrdiff_t(bottom * row));
     const std::filesystem::path out(path);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    // OpenGL rows start at the bottom.
-    stbi_flip_vertically_on_write(1);
-    if (!stbi_write_png(path.c_str(), width, height, 3, pixels.data(), width * 3))
-        throw InputError(path + ": cannot write the screenshot");
-    stbi_flip_vertically_on_write(0);
+    write_png_rgb8(out, pixels, width, height);
 }
 
 /// Runs the script one step per frame; false when it has ended (or failed: `error` is set).
@@ -450,7 +485,8 @@ int run_viewer(const ViewerOptions& options) {
             glfwGetFramebufferSize(window, &width, &height);
             if (width > 0 && height > 0) {
                 RenderRequest request = make_request(s, width, height);
-                const bool changed = request_id == 0 || request != submitted;
+                const bool changed = fit_resolution(s, request, submitted) &&
+                                     (request_id == 0 || request != submitted);
                 if (changed) {
                     // A new request restarts the film (pausing does not: see below).
                     submitted = request;

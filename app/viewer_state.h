@@ -68,6 +68,8 @@ struct ViewerState {
 
     std::shared_ptr<const Frame> frame;  // shown
     std::string render_error;
+    std::string resolution_error;            // the last resolution refused (too much memory)
+    float accepted_resolution_scale = 1.0f;  // the slider returns here after a refusal
     std::vector<MethodTotals> comparison;
     std::vector<std::string> pending_loads;  // from the path field, the list, drops
     bool compare_requested = false;

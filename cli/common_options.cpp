@@ -1,11 +1,10 @@
 #include "common_options.h"
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 
 #include "scene/builtin_scenes.h"
-#include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt::cli {
 
@@ -72,9 +71,7 @@ Scene load_scene_verbose(const std::string& spec) {
 
 void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
     if (options.stats_path.empty()) return;
-    std::ofstream out(options.stats_path);
-    out << stats.dump(2) << "\n";
-    if (!out) throw InputError(options.stats_path + ": cannot write statistics");
+    write_file(options.stats_path, stats.dump(2) + "\n", "statistics");
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

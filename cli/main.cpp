@@ -1,5 +1,6 @@
 // edacrt: the headless command-line tool. Renders images and traces ray files with any method.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <exception>
 #include <iostream>
 
@@ -32,6 +33,11 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::cerr << "edacrt: internal error: " << e.what() << "\n";
         return 2;
+    }
+    // The report on stdout is output too: a full disk or closed pipe must not pass as success.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::cerr << "edacrt: error: cannot write to standard output\n";
+        return 1;
     }
     return 0;
 }

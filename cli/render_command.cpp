@@ -1,6 +1,8 @@
 // edacrt render: the progressive wavefront renderer (primary, ao or path), to PNG or PFM.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <vector>
@@ -8,6 +10,7 @@
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "render/render_memory.h"
 #include "render/renderer.h"
 #include "stats_json.h"
 #include "util/error.h"
@@ -31,6 +34,17 @@ struct RenderOptions {
     CameraOptions camera;
 };
 
+/// Bytes per pixel the command holds besides the renderer's: the reference, and the larger of
+/// the output (the film's mean, tone-mapped in place for PNG, then the 8-bit pixels and stb's
+/// filtered rows, compressed stream and final copy) and the --stats trace of one ray per pixel.
+std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
+    const bool pfm = std::filesystem::path(o.out).extension() == ".pfm";
+    const std::uint64_t image = sizeof(glm::vec3) + (pfm ? 0 : 4 * 3);
+    const std::uint64_t stats = o.common.stats_path.empty() ? 0 : trace_bytes_per_ray(true);
+    const std::uint64_t reference = o.reference.empty() ? 0 : sizeof(glm::vec3);
+    return reference + std::max(image, stats);
+}
+
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     RenderSettings settings = o.settings;
@@ -38,7 +52,9 @@ void run(const RenderOptions& o) {
     settings.primary = parse_primary_shading(o.primary);
     if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
     validate(settings);
+    check_render_memory(settings, command_bytes_per_pixel(o));
     const ToneMap tone = parse_tone_map(o.tone_map);
+    validate_exposure(o.exposure);
     if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
         throw InputError("--time-budget must be a finite number of seconds >= 0");
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
@@ -83,8 +99,10 @@ void run(const RenderOptions& o) {
 
     const std::filesystem::path out(o.out);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    const Image mean = renderer.film().mean();
-    write_image(out, out.extension() == ".pfm" ? mean : tone_map(mean, o.exposure, tone));
+    // Temporaries only: the images are gone before the statistics trace below.
+    write_image(out, out.extension() == ".pfm"
+                         ? renderer.film().mean()
+                         : tone_map(renderer.film().mean(), o.exposure, tone));
 
     const PassStats& total = renderer.total();
     const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;

@@ -38,7 +38,8 @@ void main() {
         colour = vec4(turbo(t), 1.0);  // turbo is defined in display (sRGB) space
         return;
     }
-    vec3 c = max(texture(image, uv).rgb * exp2(exposure), 0.0);
+    // As tone_map() in film.cpp: from 1e6 up everything is white, and ACES's c * c stays finite.
+    vec3 c = clamp(texture(image, uv).rgb * exp2(exposure), 0.0, 1e6);
     if (tone_map == 1) c = c / (1.0 + c);
     if (tone_map == 2) c = clamp(c * (2.51 * c + 0.03) / (c * (2.43 * c + 0.59) + 0.14), 0.0, 1.0);
     colour = vec4(to_srgb(c), 1.0);

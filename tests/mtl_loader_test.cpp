@@ -145,6 +145,34 @@ TEST(MtlLoader, WarningsAreAppended) {
     EXPECT_EQ(warnings[0], "earlier");
 }
 
+TEST(MtlLoader, NegativeColoursAreClampedWithOneWarningPerFile) {
+    std::vector<std::string> warnings;
+    const std::vector<Material> materials =
+        parse("newmtl a\nKe -1 2 3\nKd -0.5\nnewmtl b\nKs 0.1 -0.2 0.3\nTf 1 1 -1\nKd 0 -0 0\n",
+              &warnings);
+    ASSERT_EQ(materials.size(), 2u);
+    EXPECT_EQ(materials[0].ke, glm::vec3(0, 2, 3));  // no negative radiance
+    EXPECT_EQ(materials[0].kd, glm::vec3(0));
+    EXPECT_EQ(materials[1].ks, glm::vec3(0.1f, 0, 0.3f));
+    EXPECT_EQ(materials[1].tf, glm::vec3(1, 1, 0));
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0],
+              "m.mtl:2: 'Ke' has a negative component: negative colour components are clamped to "
+              "0 (4 statements in this file)");
+}
+
+TEST(MtlLoader, ErrorsQuoteOnlyAShortEscapedExcerptOfTheFile) {
+    // Any file can be named by mtllib; a message must not copy its content.
+    const std::string secret = "root:x:0:0:" + std::string(200, 's') + "\x1b[31m\n";
+    const std::string message = error_of(secret);
+    EXPECT_TRUE(contains(message, "m.mtl:1: unexpected 'root:x:0:0:sssss"));
+    EXPECT_LT(message.size(), 100u) << message;
+    const std::string binary = error_of(
+        "\x7f"
+        "ELF\x02\x01\x01\xff\xfe rest\n");
+    EXPECT_TRUE(contains(binary, "m.mtl:1: unexpected '\\x7FELF\\x02\\x01\\x01\\xFF\\xFE'"));
+}
+
 TEST(MtlLoader, EmptyTextHasNoMaterials) {
     EXPECT_TRUE(parse("").empty());
     EXPECT_TRUE(parse("# only a comment\n\n").empty());

@@ -270,6 +270,51 @@ TEST(ObjLoader, MtlErrorsNameTheMtlFileAndLine) {
                          "m.mtl:2: bad number 'x'"));
 }
 
+TEST(ObjLoader, MissingMaterialLibraryWarnsAndUsesTheDefault) {
+    const Scene scene = parse("# lib\nmtllib gone.mtl\nusemtl red\n" + std::string(kSquare) +
+                              "f 1 2 3\nusemtl blue\nf 1 3 4\n");
+    EXPECT_EQ(scene.triangles.size(), 2u);
+    ASSERT_EQ(scene.materials.size(), 1u);
+    EXPECT_EQ(scene.materials[0].name, "default");
+    // One warning for the library and one for its materials, not one per usemtl name.
+    ASSERT_EQ(scene.warnings.size(), 2u);
+    EXPECT_EQ(scene.warnings[0],
+              "t.obj:2: cannot read material library 'gone.mtl'; its materials are replaced by "
+              "the default material");
+    EXPECT_EQ(scene.warnings[1],
+              "t.obj: 2 materials are not defined (a material library is missing); the default "
+              "material is used");
+}
+
+TEST(ObjLoader, MtllibNameIsTheRestOfTheLine) {
+    const MtlReader read_mtl = mtl_files({{"my materials.mtl", std::string(kTwoMaterials)},
+                                          {"a.mtl", "newmtl red\nKd 1 0 0\n"},
+                                          {"b.mtl", "newmtl green\nKd 0 1 0\n"}});
+    // A name with a space.
+    Scene scene = parse(
+        "mtllib my materials.mtl \nusemtl green\n" + std::string(kSquare) + "f 1 2 3\n", read_mtl);
+    EXPECT_EQ(scene.materials.size(), 2u);
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    // No file of the whole name: several names, of which the missing one is reported.
+    scene =
+        parse("mtllib a.mtl gone.mtl b.mtl\nusemtl green\n" + std::string(kSquare) + "f 1 2 3\n",
+              read_mtl);
+    EXPECT_EQ(scene.materials.size(), 2u);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_TRUE(contains(scene.warnings[0], "t.obj:1: cannot read material library 'gone.mtl'"));
+    // None of them: the whole line is reported once.
+    scene = parse("mtllib my gone.mtl\n" + std::string(kSquare) + "f 1 2 3\n", read_mtl);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_TRUE(contains(scene.warnings[0], "t.obj:1: cannot read material library 'my gone.mtl'"));
+}
+
+TEST(ObjLoader, MtllibNameFromTheFileIsEscapedInMessages) {
+    const std::string name = "m\x1b[2J" + std::string(100, 'x') + ".mtl";
+    const std::string message =
+        error_of("mtllib " + name + "\n", mtl_files({{name, "newmtl a\nKd 1 x 1\n"}}));
+    EXPECT_TRUE(contains(message, "m\\x1B[2J" + std::string(55, 'x') + "...:2: bad number 'x'"));
+}
+
 TEST(ObjLoader, DegenerateTrianglesKeepFileOrderAndAreCountedInOneWarning) {
     const Scene scene = parse(std::string(kSquare) +
                               "v 0 0 0\n"    // 5: same position as 1
@@ -309,7 +354,7 @@ TEST(ObjLoader, EmptySceneIsAnError) {
 struct BadObj {
     const char* name;
     std::string text;
-    const char* message;  // expected part of the error, with the line
+    std::string message;  // expected part of the error, with the line
 };
 
 class ObjErrors : public ::testing::TestWithParam<BadObj> {};
@@ -335,6 +380,8 @@ INSTANTIATE_TEST_SUITE_P(
                "t.obj:4: face vertex index 99999999999999999999999 out of range"},
         BadObj{"HugeNegativeIndex", kTri + "f 1 2 -99999999999\n",
                "t.obj:4: face vertex index -99999999999 out of range"},
+        BadObj{"LongIndexIsCut", kTri + "f 1 2 " + std::string(500, '9') + "\n",
+               "t.obj:4: face vertex index " + std::string(60, '9') + "... out of range"},
         BadObj{"TexcoordIndexOutOfRange", kTri + "vt 0 0\nf 1/1 2/2 3/1\n",
                "t.obj:5: face texture coordinate index 2 out of range (1 texture coordinates"},
         BadObj{"NormalIndexOutOfRange", kTri + "vn 0 0 1\nf 1//1 2//1 3//-2\n",
@@ -363,8 +410,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadObj{"NormalGarbage", "vn 0 1 z\n", "t.obj:1: bad number 'z'"},
         BadObj{"NormalNaN", "vn 0 nan 1\n", "t.obj:1: non-finite number 'nan'"},
         BadObj{"TexcoordGarbage", "vt 0 q\n", "t.obj:1: bad number 'q'"},
-        BadObj{"MtllibMissing", "# lib\nmtllib gone.mtl\n",
-               "t.obj:2: cannot read material library 'gone.mtl'"},
         BadObj{"MtllibWithoutName", "mtllib\n", "t.obj:1: mtllib without a file name"},
         BadObj{"UsemtlWithoutName", "usemtl  \n", "t.obj:1: usemtl without a material name"},
         BadObj{"LineContinuation", "v 1 2 \\\n3\n", "t.obj:1: line continuation"},
@@ -372,7 +417,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadObj{"NotAStatement", "v 0 0 0\n{\"json\": true}\n",
                "t.obj:2: unexpected '{\"json\":' (not an OBJ statement)"},
         BadObj{"BinaryGarbage", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\x01\0", 20),
-               "t.obj:1: unexpected '\x89PNG' (not an OBJ statement)"},
+               "t.obj:1: unexpected '\\x89PNG' (not an OBJ statement)"},
         BadObj{"ManyKindsOfUnsupportedStatement",
                [] {
                    std::string text;
@@ -441,18 +486,21 @@ TEST(LoadObj, ReadsMaterialLibrariesBesideTheObj) {
 
 TEST(LoadObj, MissingMaterialLibraryNamesTheMtlTheObjLineAndTheDirectory) {
     const TempDir dir;
-    const fs::path obj = dir.write("s.obj", kTri + "mtllib gone.mtl\n");
-    EXPECT_TRUE(contains(load_error(obj), obj.string() +
-                                              ":4: cannot read material library 'gone.mtl' "
-                                              "(looked in " +
-                                              dir.path().string() + ")"));
+    const fs::path obj = dir.write("s.obj", kTri + "mtllib gone.mtl\nf 1 2 3\n");
+    const Scene scene = load_obj(obj);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_EQ(scene.warnings[0],
+              obj.string() + ":4: cannot read material library 'gone.mtl' (looked in " +
+                  dir.path().string() + "); its materials are replaced by the default material");
 }
 
-TEST(LoadObj, UnreadableMaterialLibraryIsAnError) {
+TEST(LoadObj, UnreadableMaterialLibraryIsReportedLikeAMissingOne) {
     const TempDir dir;
     fs::create_directory(dir.path() / "dir.mtl");  // exists, but cannot be read as a file
-    const fs::path obj = dir.write("s.obj", "mtllib dir.mtl\n");
-    EXPECT_TRUE(contains(load_error(obj), ":1: cannot read material library 'dir.mtl'"));
+    const fs::path obj = dir.write("s.obj", "mtllib dir.mtl\n" + kTri + "f 1 2 3\n");
+    const Scene scene = load_obj(obj);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_TRUE(contains(scene.warnings[0], ":1: cannot read material library 'dir.mtl'"));
 }
 
 TEST(LoadObj, MtlErrorNamesTheMtlPath) {

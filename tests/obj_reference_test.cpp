@@ -167,7 +167,7 @@ INSTANTIATE_TEST_SUITE_P(
                       KnownScene{"Teapot", "assets/teapot/teapot.obj", 6320}),
     [](const auto& info) { return std::string(info.param.name); });
 
-// Triangle counts from /work/shared/scenes/README.md.
+// Triangle counts from ../shared/scenes/README.md.
 const KnownScene kLargeScenes[] = {
     {"CornellBox", "cornell-box/CornellBox-Original.obj", 36},
     {"Teapot", "teapot/teapot.obj", 6320},
@@ -184,11 +184,9 @@ const KnownScene kLargeScenes[] = {
 class LargeScene : public ::testing::TestWithParam<KnownScene> {};
 
 TEST_P(LargeScene, AgreesWithTinyobjloaderAndTheReadme) {
+    if (const std::string why = test::missing_scene(GetParam().file); !why.empty())
+        GTEST_SKIP() << why;
     const fs::path path = test::scenes_dir() / GetParam().file;
-    if (!fs::exists(path)) {
-        GTEST_SKIP() << path << " not found (large scenes are looked up in " << test::scenes_dir()
-                     << "; set EDACRT_SCENES to point elsewhere)";
-    }
     const Counts counts = compare_with_tinyobj(path);
     EXPECT_EQ(counts.triangles, GetParam().triangles);
     if (std::string_view(GetParam().name) == "Conference") {
@@ -200,18 +198,6 @@ TEST_P(LargeScene, AgreesWithTinyobjloaderAndTheReadme) {
 
 INSTANTIATE_TEST_SUITE_P(ObjReference, LargeScene, ::testing::ValuesIn(kLargeScenes),
                          [](const auto& info) { return std::string(info.param.name); });
-
-TEST(ObjReference, OtherScenesAgreeWithTinyobjloader) {
-    const fs::path dir = test::scenes_dir();
-    if (!fs::is_directory(dir)) GTEST_SKIP() << "no large scenes at " << dir;
-    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        if (entry.path().extension() != ".obj") continue;
-        const fs::path relative = fs::relative(entry.path(), dir);
-        bool known = false;
-        for (const KnownScene& scene : kLargeScenes) known |= relative == scene.file;
-        if (!known) compare_with_tinyobj(entry.path());
-    }
-}
 
 }  // namespace
 }  // namespace edacrt

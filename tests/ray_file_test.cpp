@@ -77,5 +77,35 @@ TEST(RayFile, MissingFileIsAnError) {
     EXPECT_NE(error_of("/no/such/rays.bin").find("cannot open ray file"), std::string::npos);
 }
 
+TEST(RayFile, OnlyRegularFilesAreRead) {
+    // A directory "opens" with a size of 2^63 - 1; /dev/zero reports 0 bytes (no rays).
+    for (const std::filesystem::path& path :
+         {std::filesystem::temp_directory_path(), std::filesystem::path("/dev/zero")}) {
+        const std::string message = error_of(path);
+        EXPECT_NE(message.find(path.string() + ": not a regular file"), std::string::npos)
+            << message;
+    }
+}
+
+TEST(RayFile, WriteErrorsAreReported) {
+    // /dev/full accepts the open and fails the write, here at the final flush.
+    const std::vector<Ray> rays(2);
+    const std::vector<Hit> hits(1);
+    const auto message = [](const auto& write) -> std::string {
+        try {
+            write();
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    EXPECT_EQ(message([&] { write_rays("/dev/full", rays); }),
+              "/dev/full: cannot write ray file (No space left on device)");
+    EXPECT_EQ(message([&] { write_hits("/dev/full", hits); }),
+              "/dev/full: cannot write hit file (No space left on device)");
+    EXPECT_EQ(message([&] { write_rays("/no/such/dir/rays.bin", rays); }),
+              "/no/such/dir/rays.bin: cannot create ray file (No such file or directory)");
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -9,6 +9,7 @@
 
 #include "cli_runner.h"
 #include "render/image.h"
+#include "test_paths.h"
 
 namespace edacrt {
 namespace {
@@ -83,6 +84,9 @@ TEST_F(RenderCli, BadInputFailsWithAClearMessage) {
         {kSmall + "--max-depth -1", "max depth"},
         {kSmall + "--ao-samples 0", "ao samples"},
         {kSmall + "--time-budget -1", "--time-budget"},
+        {kSmall + "--exposure nan", "exposure must be a finite number of stops in [-64, 64]"},
+        {kSmall + "--exposure -inf", "exposure must be a finite number of stops"},
+        {kSmall + "--exposure 1000", "exposure must be a finite number of stops"},
         {kSmall + "--tone-map magic", "unknown tone map"},
         {kSmall + "--embree-mode magic", "unknown Embree mode"},
         {kSmall + "--reference " + path("bad.pfm"), "not a colour PFM"},
@@ -97,6 +101,49 @@ TEST_F(RenderCli, BadInputFailsWithAClearMessage) {
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
                                                                     << result.output;
     }
+}
+
+TEST_F(RenderCli, ARenderThatCannotFitIsRefusedUpFront) {
+    // The limit is set low so that the test does not depend on this machine's memory.
+    const auto result = test::run_command(
+        "EDACRT_MEMORY_LIMIT=1000000000 '" + test::cli_path().string() +
+        "' render --scene builtin:cornell --width 16384 --height 16384 --out " + path("x.png"));
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    // Film 24 bytes per pixel, samples 12, the image (tone-mapped in place) 12 and the PNG's
+    // buffers 12: 60, where the peak RSS measures 55 (it was 67 before the copies were cut).
+    EXPECT_NE(result.output.find("edacrt: error: a 16384x16384 path render needs about 16.2 GB "
+                                 "of memory (60 bytes per pixel), more than the 1.0 GB of "
+                                 "EDACRT_MEMORY_LIMIT; choose a smaller size"),
+              std::string::npos)
+        << result.output;
+    EXPECT_EQ(result.output.find("loaded"), std::string::npos) << "refused before any work";
+}
+
+TEST_F(RenderCli, WriteErrorsFailTheCommand) {
+    // /dev/full takes the open and fails the writes; small outputs fail only at the close.
+    std::filesystem::create_symlink("/dev/full", path("full.pfm"));
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"--out /dev/full", "/dev/full: cannot write PNG (No space left on device)"},
+        {"--out " + path("full.pfm"), "full.pfm: cannot write PFM (No space left on device)"},
+        {"--out " + path("x.png") + " --stats /dev/full",
+         "/dev/full: cannot write statistics (No space left on device)"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(kSmall + "--spp 1 " + c.args);
+        EXPECT_EQ(result.exit_code, 1) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: "), std::string::npos) << result.output;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
+                                                                    << result.output;
+    }
+    // The report on stdout is checked too (the subshell keeps stderr on the pipe).
+    const auto report = test::run_command("('" + test::cli_path().string() + "' " + kSmall +
+                                          "--spp 1 --out " + path("x.png") + " >/dev/full)");
+    EXPECT_EQ(report.exit_code, 1) << report.output;
+    EXPECT_NE(report.output.find("edacrt: error: cannot write to standard output"),
+              std::string::npos)
+        << report.output;
 }
 
 }  // namespace

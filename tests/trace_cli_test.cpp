@@ -121,6 +121,7 @@ TEST_F(TraceCli, CameraRaysAreTheEnginesAndFeedTrace) {
 
 TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
     std::ofstream(path("odd.bin"), std::ios::binary) << std::string(40, '\0');
+    write_rays(path("one.bin"), random_rays(1, 3));
     const struct {
         std::string args, message;
     } cases[] = {
@@ -128,8 +129,12 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
          "not a multiple of the 32-byte ray record"},
         {"trace --scene builtin:cornell --rays /no/rays.bin --out " + path("h.bin"),
          "cannot open ray file"},
-        {"trace --scene /no/scene.obj --rays " + path("odd.bin") + " --out " + path("h.bin"),
-         "error"},
+        {"trace --scene builtin:cornell --rays /dev/zero --out " + path("h.bin"),
+         "/dev/zero: not a regular file"},
+        {"trace --scene builtin:cornell --rays " + dir_.string() + " --out " + path("h.bin"),
+         dir_.string() + ": not a regular file"},
+        {"trace --scene /no/scene.obj --rays " + path("one.bin") + " --out " + path("h.bin"),
+         "edacrt: error: /no/scene.obj: cannot read OBJ file (no such file)"},
         {"render --scene builtin:nothing --out " + path("x.png"), "unknown built-in scene"},
         {"render --scene builtin:cornell --method magic --out " + path("x.png"),
          "unknown method 'magic'"},
@@ -145,6 +150,29 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         EXPECT_NE(result.exit_code, 0) << c.args;
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
                                                                     << result.output;
+    }
+}
+
+TEST_F(TraceCli, WriteErrorsFailTheCommand) {
+    // /dev/full takes the open and fails the writes; small outputs fail only at the close.
+    write_rays(path("rays.bin"), random_rays(10, 5));
+    const struct {
+        std::string args, message;
+    } cases[] = {
+        {"trace --scene builtin:cornell --rays " + path("rays.bin") + " --out /dev/full",
+         "/dev/full: cannot write hit file (No space left on device)"},
+        {"trace --scene builtin:cornell --rays " + path("rays.bin") + " --out " + path("h.bin") +
+             " --stats /dev/full",
+         "/dev/full: cannot write statistics (No space left on device)"},
+        {"camera-rays --scene builtin:cornell --width 4 --height 4 --out /dev/full",
+         "/dev/full: cannot write ray file (No space left on device)"},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(c.args);
+        EXPECT_EQ(result.exit_code, 1) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: " + c.message), std::string::npos)
+            << c.args << "\n"
+            << result.output;
     }
 }
 

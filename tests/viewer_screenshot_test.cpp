@@ -138,6 +138,32 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
+TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_memory_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    // 80 MB: the window's full resolution (1280x800) does not fit, half of it does. Starting
+    // at full resolution is refused; after the refused change the render goes on at half.
+    std::ofstream(dir / "script.txt")
+        << "set resolution 0.5\nwait-spp 1\nset resolution 1\nframes 2\nwait-spp 3\nquit\n";
+    const auto result = test::run_command(
+        "EDACRT_MEMORY_LIMIT=80000000 " +
+        viewer_under_xvfb("--script " + (dir / "script.txt").string() + " builtin:cornell"));
+    std::filesystem::remove_all(dir);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const std::string refusal = "edacrt_viewer: error: a 1280x800 path render needs about ";
+    const std::size_t first = result.output.find(refusal);
+    ASSERT_NE(first, std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("more than the 80 MB of EDACRT_MEMORY_LIMIT; choose a smaller "
+                                 "size",
+                                 first),
+              std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find(refusal, first + 1), std::string::npos) << "refused twice";
+    EXPECT_EQ(result.output.find("640x400 path render needs"), std::string::npos);
+}
+
 TEST(ViewerScreenshots, ABrokenSceneOnTheCommandLineFailsClearly) {
     const auto result = test::run_command(EDACRT_VIEWER " /no/such/scene.obj");
     EXPECT_NE(result.exit_code, 0);

@@ -63,6 +63,8 @@ void draw_render_panel(ViewerState& s) {
     if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
     ImGui::SliderInt("spp target", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
     ImGui::SliderFloat("resolution", &ui.resolution_scale, 0.125f, 1.0f, "%.3f x window");
+    if (!s.resolution_error.empty())
+        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.resolution_error.c_str());
     ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
     ImGui::InputInt("seed", &ui.seed);
     ImGui::Checkbox("pause", &ui.paused);

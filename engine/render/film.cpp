@@ -33,6 +33,10 @@ Image Film::mean() const {
 
 namespace {
 
+// Every operator shows radiance above this as white in 8 bits (Reinhard: 1 - 1e-6), and
+// clamping to it keeps x * x in the ACES fit finite (it overflowed from about 1e19 to NaN).
+constexpr float kWhiteRadiance = 1e6f;
+
 float aces(float x) {
     // Narkowicz 2015, "ACES Filmic Tone Mapping Curve".
     return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
@@ -40,12 +44,21 @@ float aces(float x) {
 
 }  // namespace
 
-Image tone_map(const Image& linear, float exposure_ev, ToneMap op) {
-    Image out = linear;
+void validate_exposure(float exposure_ev) {
+    if (!(std::abs(exposure_ev) <= kMaxExposure))
+        throw InputError("exposure must be a finite number of stops in [-" +
+                         std::to_string(int(kMaxExposure)) + ", " +
+                         std::to_string(int(kMaxExposure)) + "]");
+}
+
+Image tone_map(Image image, float exposure_ev, ToneMap op) {
+    validate_exposure(exposure_ev);
     const float scale = std::exp2(exposure_ev);
-    for (glm::vec3& p : out.pixels)
+    for (glm::vec3& p : image.pixels)
         for (int c = 0; c < 3; ++c) {
-            const float x = std::max(p[c] * scale, 0.0f);
+            const float scaled = p[c] * scale;
+            // NaN and negative values become black, +inf and huge values white.
+            const float x = scaled > 0.0f ? std::min(scaled, kWhiteRadiance) : 0.0f;
             switch (op) {
                 case ToneMap::clamp:
                     p[c] = std::min(x, 1.0f);
@@ -58,7 +71,7 @@ Image tone_map(const Image& linear, float exposure_ev, ToneMap op) {
                     break;
             }
         }
-    return out;
+    return image;
 }
 
 ToneMap parse_tone_map(std::string_view name) {

@@ -34,8 +34,17 @@ class Film {
 /// How linear radiance becomes display values in [0, 1] (before sRGB encoding).
 enum class ToneMap { clamp, reinhard, aces };
 
-/// Scales by 2^exposure_ev, then applies `op` per channel (aces: Narkowicz's fit).
-Image tone_map(const Image& linear, float exposure_ev, ToneMap op);
+/// Exposures beyond this many stops are rejected: 2^64 already turns any visible radiance
+/// white or black.
+inline constexpr float kMaxExposure = 64.0f;
+
+/// Throws InputError unless |exposure_ev| <= kMaxExposure (NaN and infinities included).
+void validate_exposure(float exposure_ev);
+
+/// Scales by 2^exposure_ev, then applies `op` per channel (aces: Narkowicz's fit). Values that
+/// are not positive (NaN included) become 0; +inf and radiance from 1e6 up become white, as
+/// bright as any operator shows. Throws InputError for an invalid exposure.
+Image tone_map(Image linear, float exposure_ev, ToneMap op);
 
 ToneMap parse_tone_map(std::string_view name);
 

@@ -10,15 +10,17 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt {
 namespace {
 
 float linear_to_srgb(float c) {
-    c = std::clamp(c, 0.0f, 1.0f);
+    c = c > 0.0f ? std::min(c, 1.0f) : 0.0f;  // NaN too becomes 0, not an undefined lround
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
@@ -34,8 +36,23 @@ void write_png(const std::filesystem::path& path, const Image& image) {
         for (int c = 0; c < 3; ++c)
             bytes[3 * i + c] =
                 static_cast<std::uint8_t>(std::lround(255.0f * linear_to_srgb(image.pixels[i][c])));
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(), image.width * 3))
-        throw InputError(path.string() + ": cannot write PNG");
+    write_png_rgb8(path, bytes, image.width, image.height);
+}
+
+void write_png_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                    int height) {
+    if (rgb.size() != std::size_t(width) * std::size_t(height) * 3)
+        throw std::invalid_argument("write_png_rgb8: " + std::to_string(rgb.size()) +
+                                    " bytes for " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " pixels");
+    // stbi_write_png ignores write and close errors, so stb encodes and OutputFile writes.
+    OutputFile file(path, "PNG");
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<OutputFile*>(context)->write(data, std::size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &file, width, height, 3, rgb.data(), width * 3))
+        throw InputError(path.string() + ": cannot encode PNG");
+    file.close();
 }
 
 Image read_png(const std::filesystem::path& path) {
@@ -52,12 +69,13 @@ Image read_png(const std::filesystem::path& path) {
 }
 
 void write_pfm(const std::filesystem::path& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary);
-    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "a pixel is written as one block");
+    OutputFile file(path, "PFM");
+    file.write("PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) +
+               "\n-1.0\n");
     for (int y = image.height - 1; y >= 0; --y)
-        for (int x = 0; x < image.width; ++x)
-            out.write(reinterpret_cast<const char*>(&image.at(x, y)), 3 * sizeof(float));
-    if (!out) throw InputError(path.string() + ": cannot write PFM");
+        file.write(&image.at(0, y), std::size_t(image.width) * sizeof(glm::vec3));
+    file.close();
 }
 
 Image read_pfm(const std::filesystem::path& path) {

@@ -1,6 +1,8 @@
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <glm/vec3.hpp>
+#include <span>
 #include <vector>
 
 namespace edacrt {
@@ -20,6 +22,11 @@ struct Image {
 /// Writes 8-bit sRGB (values clamped to [0, 1]). Throws InputError when the file cannot be
 /// written.
 void write_png(const std::filesystem::path& path, const Image& image);
+
+/// Writes 8-bit RGB, rows from the top, as PNG. Throws InputError when the file cannot be
+/// written, std::invalid_argument when `rgb` is not width x height x 3 bytes.
+void write_png_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                    int height);
 
 /// Reads an 8-bit PNG back into linear RGB. Throws InputError.
 Image read_png(const std::filesystem::path& path);

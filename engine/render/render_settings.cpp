@@ -1,5 +1,6 @@
 #include "render/render_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -23,6 +24,11 @@ void validate(const RenderSettings& s) {
         if (!std::isfinite(s.sky[c]) || s.sky[c] < 0.0f)
             fail("sky radiance must be finite and >= 0");
     if (s.tile_pixels < 1) fail("tile size must be at least 1 pixel");
+}
+
+std::size_t wavefront_tile_pixels(const RenderSettings& settings) {
+    if (settings.integrator != Integrator::ao) return settings.tile_pixels;
+    return std::max<std::size_t>(1, settings.tile_pixels / std::size_t(settings.ao_samples));
 }
 
 Integrator parse_integrator(std::string_view name) {

@@ -35,6 +35,10 @@ struct RenderSettings {
 /// Throws InputError naming the first setting out of range.
 void validate(const RenderSettings& settings);
 
+/// Pixels per wavefront: tile_pixels, divided by ao_samples for ao so that a tile's AO batch
+/// holds about tile_pixels rays (the memory of a batch grows with its rays).
+std::size_t wavefront_tile_pixels(const RenderSettings& settings);
+
 Integrator parse_integrator(std::string_view name);
 std::string_view integrator_name(Integrator integrator);
 PrimaryShading parse_primary_shading(std::string_view name);

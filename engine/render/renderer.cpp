@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "render/render_memory.h"
+
 namespace edacrt {
 namespace {
 
@@ -13,6 +15,7 @@ const Camera& validated(const Camera& camera) {
 
 const RenderSettings& validated(const RenderSettings& settings) {
     validate(settings);
+    check_render_memory(settings);
     return settings;
 }
 
@@ -39,8 +42,9 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
                  settings_, projection_,    std::uint32_t(film_.passes()),
                  cancel,    primary_detail, stats};
     const std::size_t pixels = samples_.size();
-    for (std::size_t begin = 0; begin < pixels; begin += settings_.tile_pixels) {
-        const std::size_t end = std::min(pixels, begin + settings_.tile_pixels);
+    const std::size_t tile_pixels = wavefront_tile_pixels(settings_);
+    for (std::size_t begin = 0; begin < pixels; begin += tile_pixels) {
+        const std::size_t end = std::min(pixels, begin + tile_pixels);
         const std::span<glm::vec3> tile(samples_.data() + begin, end - begin);
         bool done = false;
         switch (settings_.integrator) {

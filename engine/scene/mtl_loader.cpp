@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <glm/common.hpp>
 #include <string>
 #include <system_error>
 
@@ -25,6 +26,11 @@ class MtlParser {
     std::vector<Material> parse() {
         std::string_view line;
         while (lines_.next(line)) parse_line(line);
+        if (negative_colours_ > 0)
+            warnings_.push_back(
+                first_negative_ + ": negative colour components are clamped to 0 (" +
+                std::to_string(negative_colours_) +
+                (negative_colours_ == 1 ? " statement" : " statements") + " in this file)");
         return std::move(materials_);
     }
 
@@ -52,13 +58,13 @@ class MtlParser {
         Material& material = materials_.back();
         const auto is = [&](std::string_view name) { return equals_ignoring_case(keyword, name); };
         if (is("Kd")) {
-            material.kd = colour(tokens, keyword);
+            material.kd = non_negative_colour(tokens, keyword);
         } else if (is("Ks")) {
-            material.ks = colour(tokens, keyword);
+            material.ks = non_negative_colour(tokens, keyword);
         } else if (is("Ke")) {
-            material.ke = colour(tokens, keyword);
+            material.ke = non_negative_colour(tokens, keyword);
         } else if (is("Tf")) {
-            material.tf = colour(tokens, keyword);
+            material.tf = non_negative_colour(tokens, keyword);
         } else if (is("Ka")) {
             colour(tokens, keyword);  // ambient is not modelled; common enough to accept quietly
         } else if (is("Ns")) {
@@ -92,6 +98,17 @@ class MtlParser {
         if (count == 1) return glm::vec3(values[0]);
         if (count == 3) return glm::vec3(values[0], values[1], values[2]);
         fail(quote(keyword) + " needs 1 or 3 numbers, found " + std::to_string(count));
+    }
+
+    /// colour() with negative components clamped to 0: they would make negative radiance.
+    /// Counted, and reported once per file with the first place.
+    glm::vec3 non_negative_colour(Tokens& tokens, std::string_view keyword) {
+        glm::vec3 value = colour(tokens, keyword);
+        if (value.x >= 0.0f && value.y >= 0.0f && value.z >= 0.0f) return value;
+        if (negative_colours_++ == 0)
+            first_negative_ = source_ + ":" + std::to_string(lines_.number()) + ": " +
+                              quote(keyword) + " has a negative component";
+        return glm::max(value, glm::vec3(0.0f));
     }
 
     float single_number(Tokens& tokens, std::string_view keyword) const {
@@ -134,6 +151,8 @@ class MtlParser {
     std::vector<std::string>& warnings_;
     std::vector<Material> materials_;
     std::vector<std::string> ignored_;  // lower case
+    std::size_t negative_colours_ = 0;  // statements with a negative component
+    std::string first_negative_;        // where the first one is, for the warning
 };
 
 }  // namespace

@@ -283,9 +283,8 @@ class ObjParser {
             fail(std::string("bad face ") + kind.name + " index " + quote(token));
         }
         const auto out_of_range = [&] {
-            fail(std::string("face ") + kind.name + " index " + std::string(token) +
-                 " out of range (" + std::to_string(count) + " " + kind.plural +
-                 " defined so far)");
+            fail(std::string("face ") + kind.name + " index " + escape(token) + " out of range (" +
+                 std::to_string(count) + " " + kind.plural + " defined so far)");
         };
         if (ec == std::errc::result_out_of_range) out_of_range();
         if (index == 0) {
@@ -324,29 +323,41 @@ class ObjParser {
         use_ids_.emplace(name, current_use_);
     }
 
+    /// The argument is the rest of the line, as file names may contain spaces; when no file has
+    /// that whole name, it is taken as several names. A library that cannot be read is
+    /// reported and its materials become the default one, as other viewers do.
     void load_libraries(Tokens& tokens) {
-        std::string_view name;
-        bool any = false;
-        while (tokens.next(name)) {
-            any = true;
-            load_library(std::string(name));
+        const std::string_view names = tokens.rest();
+        if (names.empty()) fail("mtllib without a file name");
+        if (load_library(names)) return;
+        std::vector<std::string_view> parts;
+        Tokens split(names);
+        for (std::string_view name; split.next(name);) parts.push_back(name);
+        std::vector<std::string_view> missing;
+        for (const std::string_view name : parts)
+            if (parts.size() == 1 || !load_library(name)) missing.push_back(name);
+        if (missing.size() == parts.size()) missing = {names};  // none read: name the whole line
+        for (const std::string_view name : missing) {
+            ++missing_libraries_;
+            scene_.warnings.push_back(
+                where() + "cannot read material library " + quote(name) +
+                (mtl_dir_.empty() ? std::string() : " (looked in " + mtl_dir_ + ")") +
+                "; its materials are replaced by the default material");
         }
-        if (!any) fail("mtllib without a file name");
     }
 
-    void load_library(const std::string& name) {
+    /// Reads and parses one library (once per name); false when it cannot be read.
+    bool load_library(std::string_view name_view) {
+        const std::string name(name_view);
         for (const std::string& loaded : libraries_)
-            if (loaded == name) return;
+            if (loaded == name) return true;
+        const std::optional<std::string> text =
+            read_mtl_ ? read_mtl_(name) : std::optional<std::string>();
+        if (!text) return false;
         libraries_.push_back(name);
-
-        std::optional<std::string> text;
-        if (read_mtl_) text = read_mtl_(name);
-        if (!text) {
-            fail("cannot read material library " + quote(name) +
-                 (mtl_dir_.empty() ? std::string() : " (looked in " + mtl_dir_ + ")"));
-        }
+        // The name comes from the OBJ file, so messages show it escaped and shortened.
         const std::string mtl_source =
-            mtl_dir_.empty() ? name : (fs::path(mtl_dir_) / name).string();
+            mtl_dir_.empty() ? escape(name) : (fs::path(mtl_dir_) / escape(name)).string();
         for (Material& material : parse_mtl(*text, mtl_source, scene_.warnings)) {
             // The first definition wins, as in tinyobjloader.
             const auto id = static_cast<std::uint32_t>(scene_.materials.size());
@@ -357,6 +368,7 @@ class ObjParser {
                                           " is defined more than once; the first one is used");
             }
         }
+        return true;
     }
 
     void ignore_statement(std::string_view keyword) {
@@ -376,6 +388,7 @@ class ObjParser {
     void resolve_materials() {
         std::vector<std::uint32_t> ids(uses_.size(), 0);
         std::optional<std::uint32_t> default_id;
+        std::size_t undefined = 0;
         for (std::size_t i = 0; i < uses_.size(); ++i) {
             const MaterialUse& use = uses_[i];
             if (!use.name.empty()) {
@@ -383,9 +396,12 @@ class ObjParser {
                     ids[i] = it->second;
                     continue;
                 }
-                scene_.warnings.push_back(source_ + ":" + std::to_string(use.line) + ": material " +
-                                          quote(use.name) +
-                                          " is not defined; the default material is used");
+                ++undefined;
+                // With a library missing, its materials are expected to be undefined.
+                if (missing_libraries_ == 0)
+                    scene_.warnings.push_back(source_ + ":" + std::to_string(use.line) +
+                                              ": material " + quote(use.name) +
+                                              " is not defined; the default material is used");
             }
             if (!use.used) continue;
             if (!default_id) {
@@ -395,6 +411,10 @@ class ObjParser {
             ids[i] = *default_id;
         }
         for (std::uint32_t& material : scene_.triangle_materials) material = ids[material];
+        if (missing_libraries_ > 0 && undefined > 0)
+            scene_.warnings.push_back(source_ + ": " + std::to_string(undefined) +
+                                      " materials are not defined (a material library is "
+                                      "missing); the default material is used");
     }
 
     std::string_view text_;
@@ -415,6 +435,7 @@ class ObjParser {
     NameMap use_ids_;                // usemtl name -> index into uses_
     std::uint32_t current_use_ = 0;
     std::vector<std::string> libraries_;  // names already read
+    std::size_t missing_libraries_ = 0;
     NameMap material_ids_;
     std::vector<std::string> ignored_keywords_;
 };

@@ -26,8 +26,12 @@ inline bool is_keyword(std::string_view word) {
     return true;
 }
 
-/// A token for a message: control bytes escaped, long tokens cut, so garbage input cannot
-/// garble the message.
+/// Text from a file for a message: control bytes and bytes that are not valid UTF-8 escaped
+/// (\xNN), cut after `max_length` bytes ("..."), so garbage input cannot garble or flood the
+/// message.
+std::string escape(std::string_view text, std::size_t max_length = 60);
+
+/// A token for a message: escape()d to 40 bytes, in single quotes.
 std::string quote(std::string_view text);
 
 /// The lines of a text, split at "\n", "\r\n" or a lone "\r" (classic Mac files), so that line

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt {
 namespace {
@@ -15,25 +16,33 @@ static_assert(std::endian::native == std::endian::little, "ray files are little-
 
 template <typename Record>
 std::vector<Record> read_records(const std::filesystem::path& path, const char* what) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    // Only a regular file has a size to trust: a directory "opens" with a size of 2^63 - 1
+    // and a device such as /dev/zero reports 0 bytes.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw InputError(path.string() + ": not a regular file (a " + what +
+                         " file must be a file of known size)");
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string() + ": cannot open " + what + " file");
-    const std::streamoff size = in.tellg();
-    if (size % std::streamoff(sizeof(Record)) != 0)
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(path.string() + ": cannot read the size (" + ec.message() + ")");
+    if (size % sizeof(Record) != 0)
         throw InputError(path.string() + ": size " + std::to_string(size) +
                          " bytes is not a multiple of the " + std::to_string(sizeof(Record)) +
                          "-byte " + what + " record");
     std::vector<Record> records(std::size_t(size) / sizeof(Record));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(records.data()), size))
+    if (!in.read(reinterpret_cast<char*>(records.data()), std::streamsize(size)))
         throw InputError(path.string() + ": read error");
     return records;
 }
 
 template <typename Record>
-void write_records(const std::filesystem::path& path, std::span<const Record> records) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(records.data()), std::streamsize(records.size_bytes()));
-    if (!out) throw InputError(path.string() + ": cannot write file");
+void write_records(const std::filesystem::path& path, std::span<const Record> records,
+                   const char* what) {
+    OutputFile file(path, std::string(what) + " file");
+    file.write(records.data(), records.size_bytes());
+    file.close();
 }
 
 bool finite(const glm::vec3& v) {
@@ -62,7 +71,7 @@ std::vector<Ray> read_rays(const std::filesystem::path& path) {
 }
 
 void write_rays(const std::filesystem::path& path, std::span<const Ray> rays) {
-    write_records(path, rays);
+    write_records(path, rays, "ray");
 }
 
 std::vector<Hit> read_hits(const std::filesystem::path& path) {
@@ -70,7 +79,7 @@ std::vector<Hit> read_hits(const std::filesystem::path& path) {
 }
 
 void write_hits(const std::filesystem::path& path, std::span<const Hit> hits) {
-    write_records(path, hits);
+    write_records(path, hits, "hit");
 }
 
 }  // namespace edacrt

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,9 +43,14 @@ class Tracer {
     /// (finite origin, finite non-zero direction, tmin <= tmax); see validate_ray().
     /// With `detail`, also records per-ray (and, for recursive methods, per-level) statistics,
     /// and for those methods the nodes and one ray's path when `detail` asks for them; without
-    /// it the fast path counts only the totals.
+    /// it the fast path counts only the totals. Throws std::invalid_argument unless there is one
+    /// hit per ray.
     TraceStats trace(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                      TraceDetail* detail = nullptr) {
+        // Checked in every build: a short `hits` would be written out of bounds.
+        if (rays.size() != hits.size())
+            throw std::invalid_argument("Tracer::trace: " + std::to_string(rays.size()) +
+                                        " rays but " + std::to_string(hits.size()) + " hits");
         if (detail) {
             detail->levels.clear();
             detail->rays.assign(rays.size(), RayStats{});

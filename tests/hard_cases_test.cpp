@@ -15,6 +15,7 @@
 #include <functional>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <optional>
 #include <random>
 
@@ -162,6 +163,25 @@ glm::dvec3 random_direction(std::mt19937& rng) {
 /// may refuse a scene or rays with an InputError (counted in embree_refused).
 std::size_t embree_wrong = 0, embree_refused = 0;
 
+/// Per method: rays checked against the reference (closest and any hit counted apart) and wrong
+/// answers, printed when the suite ends.
+struct Tally {
+    std::size_t checked = 0, wrong = 0;
+};
+std::map<std::string, Tally>& tallies() {
+    static std::map<std::string, Tally> t;
+    return t;
+}
+
+class PrintTallies : public ::testing::Environment {
+    void TearDown() override {
+        for (const auto& [name, tally] : tallies())
+            std::printf("hard cases, %-15s %7zu queries checked, %4zu wrong\n", name.c_str(),
+                        tally.checked, tally.wrong);
+    }
+};
+const auto* const kPrintTallies = ::testing::AddGlobalTestEnvironment(new PrintTallies);
+
 std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& rays,
                                   const std::string& label, bool all_hit, double tolerance = 1e-5,
                                   std::size_t embree_allowance = 0) {
@@ -203,6 +223,8 @@ std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& ra
         }
         EXPECT_LE(wrong, allowed) << label << ", " << method.name << ", closest: wrong hits";
         if (embree) embree_wrong += wrong;
+        tallies()[method.name].checked += rays.size();
+        tallies()[method.name].wrong += wrong;
         wrong = 0;
         tracer->trace(rays, hits, Query::any);
         for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -214,6 +236,8 @@ std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& ra
         }
         EXPECT_LE(wrong, allowed) << label << ", " << method.name << ", any hit: wrong answers";
         if (embree) embree_wrong += wrong;
+        tallies()[method.name].checked += rays.size();
+        tallies()[method.name].wrong += wrong;
     }
     return rays.size();
 }
@@ -365,6 +389,8 @@ TEST(HardCases, RaysSpawnedFromSliversNeverHitTheirOwnTriangle) {
             std::size_t self_hits = 0;
             for (std::size_t i = 0; i < rays.size(); ++i) self_hits += hits[i].prim == own[i];
             EXPECT_EQ(self_hits, 0u) << method.name << (query == Query::any ? ", any" : "");
+            tallies()[method.name].checked += rays.size();
+            tallies()[method.name].wrong += self_hits;
         }
     }
 }

@@ -83,6 +83,21 @@ std::vector<Method_> all_methods() {
     return out;
 }
 
+/// Traces `rays` with every method, closest and any hit, and hands each answer to `check`.
+void trace_every_way(
+    const Scene& scene, const std::vector<Ray>& rays,
+    const std::function<void(const std::string&, Query, const std::vector<Hit>&)>& check) {
+    for (const Method_& method : all_methods()) {
+        const auto tracer = method.make();
+        tracer->set_scene(scene);
+        std::vector<Hit> hits(rays.size());
+        for (const Query query : {Query::closest, Query::any}) {
+            tracer->trace(rays, hits, query);
+            check(method.name, query, hits);
+        }
+    }
+}
+
 Scene make_scene(std::vector<glm::dvec3> positions,
                  std::vector<std::array<std::uint32_t, 3>> tris) {
     Scene scene;
@@ -380,19 +395,13 @@ TEST(HardCases, RaysSpawnedFromSliversNeverHitTheirOwnTriangle) {
         rays.push_back({offset_ray_origin(point, n, dir), dir, kSpawnTmin});
         own.push_back(prim);
     }
-    for (const Method_& method : all_methods()) {
-        const auto tracer = method.make();
-        tracer->set_scene(scene);
-        std::vector<Hit> hits(rays.size());
-        for (const Query query : {Query::closest, Query::any}) {
-            tracer->trace(rays, hits, query);
-            std::size_t self_hits = 0;
-            for (std::size_t i = 0; i < rays.size(); ++i) self_hits += hits[i].prim == own[i];
-            EXPECT_EQ(self_hits, 0u) << method.name << (query == Query::any ? ", any" : "");
-            tallies()[method.name].checked += rays.size();
-            tallies()[method.name].wrong += self_hits;
-        }
-    }
+    trace_every_way(scene, rays, [&](const std::string& method, Query query, const auto& hits) {
+        std::size_t self_hits = 0;
+        for (std::size_t i = 0; i < rays.size(); ++i) self_hits += hits[i].prim == own[i];
+        EXPECT_EQ(self_hits, 0u) << method << (query == Query::any ? ", any" : "");
+        tallies()[method].checked += rays.size();
+        tallies()[method].wrong += self_hits;
+    });
 }
 
 /// Rays that must hit a closed sphere of radius `radius` at `centre`: from inside, and from
@@ -522,16 +531,10 @@ TEST(HardCases, TrianglesAreNumberedInFileOrderDegenerateOnesIncluded) {
         rays.push_back({centroid + glm::vec3(0, 0, 1), {0, 0, -1}});
         expected.push_back(prim);
     }
-    for (const Method_& method : all_methods()) {
-        const auto tracer = method.make();
-        tracer->set_scene(scene);
-        std::vector<Hit> hits(rays.size());
-        for (const Query query : {Query::closest, Query::any}) {
-            tracer->trace(rays, hits, query);
-            for (std::size_t i = 0; i < rays.size(); ++i)
-                EXPECT_EQ(hits[i].prim, expected[i]) << method.name << ", ray " << i;
-        }
-    }
+    trace_every_way(scene, rays, [&](const std::string& method, Query, const auto& hits) {
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            EXPECT_EQ(hits[i].prim, expected[i]) << method << ", ray " << i;
+    });
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <glm/vec3.hpp>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "geometry/ray.h"
@@ -39,10 +40,10 @@ std::uint64_t wavefront_bytes_per_pixel(const RenderSettings& s) {
         case Integrator::ao:  // camera rays and hits, the hit list, ao_samples rays per hit
             return traced + sizeof(std::uint32_t) + std::uint64_t(s.ao_samples) * traced;
         case Integrator::path:
-            // Rays and hits, the next rays, shadow rays and the compacted shadow batch with its
-            // hits, path states, shadow contributions, two flags and the shadow index.
-            return traced + 2 * sizeof(Ray) + sizeof(Ray) + sizeof(Hit) + kPathStateBytes +
-                   sizeof(glm::vec3) + 2 + sizeof(std::uint32_t);
+            // Rays and hits; the next rays, the shadow rays and the compacted shadow batch, with
+            // its hits; path states, shadow contributions, two flags and the shadow index.
+            return traced + 3 * sizeof(Ray) + sizeof(Hit) + kPathStateBytes + sizeof(glm::vec3) +
+                   2 + sizeof(std::uint32_t);
     }
     return traced;
 }

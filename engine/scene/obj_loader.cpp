@@ -347,8 +347,9 @@ class ObjParser {
             fail("cannot read material library " + quote(name) +
                  (mtl_dir_.empty() ? std::string() : " (looked in " + mtl_dir_ + ")"));
         }
+        // The name prefixes the library's messages: escaped, as it comes from the OBJ text.
         const std::string mtl_source =
-            mtl_dir_.empty() ? name : (fs::path(mtl_dir_) / name).string();
+            escape(mtl_dir_.empty() ? name : (fs::path(mtl_dir_) / name).string());
         for (Material& material : parse_mtl(*text, mtl_source, scene_.warnings)) {
             // The first definition wins, as in tinyobjloader.
             const auto id = static_cast<std::uint32_t>(scene_.materials.size());

@@ -6,24 +6,25 @@
 
 namespace edacrt::text_scan {
 
-/// A token for a message: control bytes escaped, long tokens cut, so garbage input cannot
-/// garble the message.
-std::string quote(std::string_view text) {
-    constexpr std::size_t kMax = 40;
-    std::string out = "'";
-    for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c != 0x7f) {
-            out += static_cast<char>(c);
+std::string escape(std::string_view text) {
+    std::string out;
+    for (const char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) {
+            out += c;
         } else {
             constexpr char kHex[] = "0123456789ABCDEF";
             out += "\\x";
-            out += kHex[c >> 4];
-            out += kHex[c & 15];
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
         }
     }
-    if (text.size() > kMax) out += "...";
-    return out + "'";
+    return out;
+}
+
+std::string quote(std::string_view text) {
+    constexpr std::size_t kMax = 40;
+    return "'" + escape(text.substr(0, kMax)) + (text.size() > kMax ? "...'" : "'");
 }
 
 /// Parses a whole token as a finite float. from_chars is exact and allocation-free, but rejects

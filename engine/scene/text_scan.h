@@ -26,8 +26,10 @@ inline bool is_keyword(std::string_view word) {
     return true;
 }
 
-/// A token for a message: control bytes escaped, long tokens cut, so garbage input cannot
-/// garble the message.
+/// Text for a message with control bytes escaped as \xNN, so garbage input cannot garble it.
+std::string escape(std::string_view text);
+
+/// A token for a message: escaped, long tokens cut, in quotes.
 std::string quote(std::string_view text);
 
 /// The lines of a text, split at "\n", "\r\n" or a lone "\r" (classic Mac files), so that line

@@ -3,7 +3,6 @@
 // or throw InputError. Run under ASan/UBSan in CI, where a crash or an out-of-bounds read fails.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -12,6 +11,7 @@
 
 #include "scene/mtl_loader.h"
 #include "scene/obj_loader.h"
+#include "scene_invariants.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -143,48 +143,8 @@ std::string printable(std::string_view text) {
     return out;
 }
 
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-/// Why a material breaks the invariants; empty when it is fine.
-std::string material_violation(const Material& m) {
-    if (m.name.empty()) return "material without a name";
-    if (!finite(m.kd) || !finite(m.ks) || !finite(m.ke) || !std::isfinite(m.ns) ||
-        !std::isfinite(m.ni)) {
-        return "non-finite material value in " + m.name;
-    }
-    return {};
-}
-
-/// Why a scene breaks the invariants of Scene; empty when it is fine.
-std::string scene_violation(const Scene& scene) {
-    if (scene.triangles.empty()) return "no triangles";
-    if (scene.materials.empty()) return "no materials";
-    for (const glm::vec3& p : scene.positions)
-        if (!finite(p)) return "non-finite position";
-    for (const auto& tri : scene.triangles)
-        for (std::uint32_t i : tri)
-            if (i >= scene.positions.size()) return "triangle index out of range";
-    if (scene.triangle_materials.size() != scene.triangles.size()) return "material count";
-    for (std::uint32_t m : scene.triangle_materials)
-        if (m >= scene.materials.size()) return "material id out of range";
-    for (const Material& m : scene.materials)
-        if (std::string why = material_violation(m); !why.empty()) return why;
-    if (!scene.triangle_normals.empty()) {
-        if (scene.triangle_normals.size() != scene.triangles.size()) return "normal count";
-        for (const auto& corners : scene.triangle_normals) {
-            for (std::int32_t n : corners) {
-                if (n < -1 || (n >= 0 && static_cast<std::size_t>(n) >= scene.normals.size())) {
-                    return "normal index out of range";
-                }
-            }
-        }
-    }
-    for (const glm::vec3& n : scene.normals)
-        if (!finite(n)) return "non-finite normal";
-    return {};
-}
+using test::material_violation;
+using test::scene_violation;
 
 const std::string kMtl =
     "newmtl red\nKd 1 0 0\nKs 0.1 0.1 0.1\nNs 10\n"

@@ -315,6 +315,13 @@ TEST(ObjLoader, MtllibNameFromTheFileIsEscapedInMessages) {
     EXPECT_TRUE(contains(message, "m\\x1B[2J" + std::string(55, 'x') + "...:2: bad number 'x'"));
 }
 
+// Found by tests/fuzz/obj_fuzzer: the library name from the OBJ text prefixed the library's
+// messages unescaped.
+TEST(ObjLoader, MtlErrorsEscapeControlBytesInTheLibraryName) {
+    EXPECT_EQ(error_of("mtllib \x02m.mtl\n", mtl_files({{"\x02m.mtl", "Kd 1 1 1\n"}})),
+              "\\x02m.mtl:1: 'Kd' before any newmtl");
+}
+
 TEST(ObjLoader, DegenerateTrianglesKeepFileOrderAndAreCountedInOneWarning) {
     const Scene scene = parse(std::string(kSquare) +
                               "v 0 0 0\n"    // 5: same position as 1

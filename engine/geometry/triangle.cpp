@@ -48,8 +48,10 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
                              (na.x + na.y + na.z + std::abs(t) * (nd.x + nd.y + nd.z)) /
                              std::abs(den) +
                          rounding_gamma<double>(2) * std::abs(t);
+    // Against tmin and tmax in double: the float t may round onto them.
     const float t_float = float(t);
-    if (!(t_float >= tmin && t_float <= tmax && t_float < kInfinity && t > error)) return false;
+    if (!(t >= double(tmin) && t <= double(tmax) && t_float < kInfinity && t > error))
+        return false;
     const ShearedTriangle<double> s = shear_triangle_in_double(r, tri);
     const double det = s.u + s.v + s.w;
     if (det == 0.0) return false;  // seen edge-on

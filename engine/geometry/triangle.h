@@ -165,14 +165,17 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     const float inv_det = 1.0f / det;
     const float t = (s.u * s.az + s.v * s.bz + s.w * s.cz) * inv_det;
     const float error = s.distance_error(t, std::abs(r.dir[r.kx]), std::abs(r.dir[r.ky]));
-    if (error <= t * kTrustedDistanceError && t < kInfinity) [[likely]] {
-        if (!(t >= tmin && t <= tmax)) return false;
+    // Surely behind the origin, before tmin or after tmax. (Written so that a NaN from
+    // overflowing corners falls through to the double path.)
+    if (t + error <= 0.0f || t + error < tmin || t - error > tmax) return false;
+    // Surely inside [tmin, tmax], and accurate: decided in float. What is left (a large bound,
+    // or t within its bound of tmin or tmax, as for the second of two triangles sharing the
+    // edge a ray hits) is decided in double.
+    if (error <= t * kTrustedDistanceError && t - error >= tmin && t + error <= tmax &&
+        t < kInfinity) [[likely]] {
         out = {t, s.v * inv_det, s.w * inv_det};
         return true;
     }
-    // Surely behind the origin, before tmin or after tmax: no need to look closer. (Written so
-    // that a NaN from overflowing corners falls through to the double path.)
-    if (t + error <= 0.0f || t + error < tmin || t - error > tmax) return false;
     return refine_hit_in_double(r, tri, tmin, tmax, out);
 }
 
@@ -189,9 +192,10 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
 [[gnu::always_inline]] inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri,
                                                       float tmin, float tmax, TriangleHit& out) {
     const ShearedTriangle<float> s = shear_triangle(r, tri);
-    if (edge_uncertain(s.u, s.cx * s.by, s.cy * s.bx) |
-        edge_uncertain(s.v, s.ax * s.cy, s.ay * s.cx) |
-        edge_uncertain(s.w, s.bx * s.ay, s.by * s.ax)) [[unlikely]]
+    // One branch for the three edges (bitwise: rarely true, so not worth short-circuiting).
+    if (int(edge_uncertain(s.u, s.cx * s.by, s.cy * s.bx)) |
+        int(edge_uncertain(s.v, s.ax * s.cy, s.ay * s.cx)) |
+        int(edge_uncertain(s.w, s.bx * s.ay, s.by * s.ax))) [[unlikely]]
         return intersect_triangle_rare(r, tri, s, tmin, tmax, out);
     if ((s.u < 0.0f || s.v < 0.0f || s.w < 0.0f) && (s.u > 0.0f || s.v > 0.0f || s.w > 0.0f))
         return false;
@@ -224,8 +228,10 @@ inline Aabb conservative_bounds(const Triangle& tri) {
     return box;
 }
 
+/// Each corner scaled before the sum, so corners near the float range cannot overflow it.
 inline glm::vec3 centroid(const Triangle& tri) {
-    return (tri.p0 + tri.p1 + tri.p2) * (1.0f / 3.0f);
+    constexpr float kThird = 1.0f / 3.0f;
+    return tri.p0 * kThird + tri.p1 * kThird + tri.p2 * kThird;
 }
 
 /// The unit geometric normal, oriented by the winding p0 -> p1 -> p2; zero for a degenerate

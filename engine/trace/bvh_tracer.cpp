@@ -7,6 +7,7 @@
 #include <array>
 #include <cassert>
 
+#include "geometry/binning.h"
 #include "geometry/ray_box.h"
 
 namespace edacrt {
@@ -39,7 +40,7 @@ class Builder {
         if (!(width > 0.0f)) return;  // all centroids in one point
         const float scale = float(kBins) * (1.0f - 1e-6f) / width;
         const auto bin_of = [&](std::uint32_t prim) {
-            return std::clamp(int((centroids_[prim][axis] - lo) * scale), 0, kBins - 1);
+            return bin_index((centroids_[prim][axis] - lo) * scale, kBins);
         };
         std::array<Aabb, kBins> bin_box;
         std::array<std::uint32_t, kBins> bin_count{};

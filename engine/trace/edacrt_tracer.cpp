@@ -10,6 +10,7 @@
 #include <chrono>
 #include <iterator>
 
+#include "geometry/binning.h"
 #include "geometry/ray_box.h"
 #include "util/hash_random.h"
 
@@ -219,8 +220,7 @@ class Recursion {
     }
 
     int bin_of(const Split& split, const glm::vec3& centroid) const {
-        const int bin = int((centroid[split.axis] - split.bin_origin) * split.bin_scale);
-        return std::clamp(bin, 0, p_.bins - 1);
+        return bin_index((centroid[split.axis] - split.bin_origin) * split.bin_scale, p_.bins);
     }
 
     /// Binning (Section 3.1, after Wald 2007), ray sampling and the cost model (Section 3.2),

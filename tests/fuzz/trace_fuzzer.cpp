@@ -16,8 +16,7 @@
 // Scenes with non-finite coordinates (the OBJ loader rejects them) and rays validate_ray()
 // rejects are skipped. Degenerate triangles are kept: a tracer must never hit them.
 //
-// Environment: EDACRT_FUZZ_PRINT=1 prints every decoded case (to read a reproducer);
-// EDACRT_FUZZ_STRICT=1 also fails on the known bugs that known_issue() lets pass.
+// Environment: EDACRT_FUZZ_PRINT=1 prints every decoded case (to read a reproducer).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -153,7 +152,7 @@ std::vector<Ray> decode_rays(Decoder& in, const Scene& scene) {
                 const Triangle tri = scene.corners(in.byte() % scene.triangle_count());
                 const float u = in.barycentric(), v = in.barycentric();
                 ray.dir = in.vec3();
-                const glm::vec3 n(glm::normalize(glm::dvec3(geometric_normal(tri))));
+                const glm::vec3 n = unit_normal(tri);
                 ray.org = offset_ray_origin(surface_point(tri, u, v), n, ray.dir);
                 ray.tmin = kSpawnTmin;
                 break;
@@ -294,118 +293,13 @@ bool rounding_may_differ(const Scene& scene, const Ray& ray, const Hit& got, con
            std::abs(double(got.t) - double(expected.t)) <= reference.tolerance;
 }
 
-/// Whether some centroid is not finite or two differ on an axis by more than FLT_MAX or by
-/// less than 1e-36 (but not 0).
-bool binning_overflows(const Scene& scene) {
-    std::vector<glm::vec3> centroids;
-    for (std::size_t i = 0; i < scene.triangle_count(); ++i)
-        centroids.push_back(centroid(scene.corners(i)));
-    for (const glm::vec3& a : centroids) {
-        if (!finite(a)) return true;
-        for (const glm::vec3& b : centroids) {
-            for (int k = 0; k < 3; ++k) {
-                const float range = std::abs(a[k] - b[k]);
-                if (std::isinf(range) || (range > 0.0f && range < 1e-36f)) return true;
-            }
-        }
-    }
-    return false;
-}
-
-/// Whether the triangle test's float products may overflow for this ray: the sheared
-/// corners (~ distance) times their scaled depth (~ distance / direction).
-bool kernel_may_overflow(const Scene& scene, const Ray& ray) {
-    double distance = 0.0;
-    for (const glm::vec3& p : scene.positions)
-        distance = std::max(distance, max_abs(glm::dvec3(p) - glm::dvec3(ray.org)));
-    return distance * distance * distance / max_abs(glm::dvec3(ray.dir)) > 1e36;
-}
-
-/// Whether the ray meets triangle `prim` where the kernel's t bound (section 1: ~ aspect ratio
-/// x length / distance) is not small against t.
-bool sliver_hit(const Scene& scene, const Ray& ray, std::int32_t prim) {
-    const Triangle tri = scene.corners(std::size_t(prim));
-    const glm::dvec3 p[3] = {glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
-    double longest = 0.0;
-    for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(p[(k + 1) % 3] - p[k]));
-    const double altitude =
-        glm::length(glm::cross(p[1] - p[0], p[2] - p[0])) / longest;  // roughly, for slivers
-    const double distance =
-        std::abs(plane_hit(scene, ray, prim).t) * glm::length(glm::dvec3(ray.dir));
-    return !(longest / altitude * longest / distance < 1e3);
-}
-
-/// Whether the hit triangle's area or the hit's distance is below Embree's working range.
-bool embree_tiny(const Scene& scene, const Ray& ray, const Hit& hit) {
-    const Triangle tri = scene.corners(std::size_t(hit.prim));
-    const glm::dvec3 p0(tri.p0);
-    const double area = glm::length(glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0));
-    const double distance = double(hit.t) * glm::length(glm::dvec3(ray.dir));
-    return area < 1e-30 || distance * distance < 1e-30;
-}
-
-bool strict = false;
 bool print_cases = false;
-
-/// Known bugs the fuzzer finds within seconds (issue 9; tests/fuzz/crashes-found/), let pass
-/// (unless strict) so that CI stays green until they are fixed; each clause goes with its fix.
-/// `c` is null for naive's own checks; `got` and `expected` are misses before tracing.
-/// Returns what it is.
-const char* known_issue(const Candidate* c, const Scene& scene, const Ray& ray, const Hit& got,
-                        const Hit& expected) {
-    if (strict) return nullptr;
-    // Section 3: a hit at t = +inf (a ray from -1e38 along z), every method.
-    if ((got.hit() && std::isinf(got.t)) || (expected.hit() && std::isinf(expected.t)))
-        return "hit at t = inf";
-    // The binning of edacrt, dacrt and bvh converts NaN to int (UBSan) when a centroid
-    // overflows, or the centroids' range on an axis overflows or is so small that bins / range
-    // does (trace-binning-centroid-overflow, trace-binning-tiny-range).
-    if (c && binning_overflows(scene)) return "binning overflow";
-    // The traversals' box tests cull a hit the kernel reports within rounding of tmin or tmax
-    // when the origin is far beyond the scene, whose boxes' padding then rounds away
-    // (trace-edacrt-far-origin-tight-tmax: origin z = 1e38, tmin = tmax = naive's t, 1 ulp
-    // below the exact t).
-    for (const Hit* hit : {&got, &expected})
-        if (c && hit->hit() &&
-            std::min(std::abs(hit->t - ray.tmin), std::abs(hit->t - ray.tmax)) <= 1e-6f * hit->t)
-            return "hit at tmin or tmax";
-    if (!c || c->own_kernel) return nullptr;
-    // Only Embree tells where our kernel is wrong. Misses where the kernel's products
-    // (~ coordinates^3 / direction) overflow (trace-kernel-tiny-direction-miss: |dir| = 2e-38,
-    // a hit at t = 1.9e37 is missed).
-    if (kernel_may_overflow(scene, ray)) return "kernel overflow";
-    // Section 1: long thin triangles missed (trace-kernel-sliver-miss).
-    for (const Hit* hit : {&got, &expected})
-        if (hit->hit() && sliver_hit(scene, ray, hit->prim)) return "sliver";
-    // Section 3: Embree asserts (aborts) on tmin < 0 or a coordinate above 1.844e18 (its
-    // FLT_LARGE) in the origin or direction (trace-embree-negative-tmin-abort,
-    // trace-embree-huge-ray-abort), and misses triangles with such coordinates
-    // (trace-embree-huge-scene-miss).
-    constexpr float kEmbreeLarge = 1.844e18f;
-    const auto large = [&](const glm::vec3& v) {
-        return std::abs(v.x) > kEmbreeLarge || std::abs(v.y) > kEmbreeLarge ||
-               std::abs(v.z) > kEmbreeLarge;
-    };
-    if (ray.tmin < 0.0f) return "Embree: tmin < 0";
-    if (large(ray.org) || large(ray.dir)) return "Embree: ray coordinate beyond 1.844e18";
-    if (std::any_of(scene.positions.begin(), scene.positions.end(), large))
-        return "Embree: scene coordinate beyond 1.844e18";
-    // Embree misses hits beyond t = 1.844e18 (tiny directions; trace-embree-far-t-miss:
-    // |dir| = 1.5e-28, t = 2.6e28), and tiny triangles or distances, whose products it
-    // flushes to zero (trace-embree-tiny-scene-miss: a triangle of size 1e-20).
-    for (const Hit* hit : {&got, &expected}) {
-        if (hit->hit() && hit->t > kEmbreeLarge) return "Embree: t beyond 1.844e18";
-        if (hit->hit() && embree_tiny(scene, ray, *hit)) return "Embree: tiny triangle";
-    }
-    return nullptr;
-}
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     // One thread: reproducible runs, and the batches are far too small to split anyway.
     static tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-    strict = std::getenv("EDACRT_FUZZ_STRICT") != nullptr;
     print_cases = std::getenv("EDACRT_FUZZ_PRINT") != nullptr;
     candidates();
     return 0;
@@ -424,8 +318,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<Hit> expected(rays.size()), got(rays.size());
     naive->trace(rays, expected, Query::closest);
     naive->trace(rays, got, Query::any);
-    for (std::size_t i = 0; i < rays.size(); ++i)
-        if (known_issue(nullptr, scene, rays[i], got[i], expected[i])) return 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (const char* why = invalid_record(expected[i], rays[i], scene.triangle_count()))
             violation(scene, rays, "naive", "closest hit", i, expected[i], expected[i], why);
@@ -437,9 +329,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
 
     for (Candidate& c : candidates()) {
-        if (std::any_of(rays.begin(), rays.end(),
-                        [&](const Ray& ray) { return known_issue(&c, scene, ray, Hit{}, Hit{}); }))
-            continue;
         try {
             c.tracer->set_scene(scene);
         } catch (const InputError& e) {
@@ -455,7 +344,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 violation(scene, rays, c.name, query_name, 0, Hit{}, Hit{}, e.what());
             }
             for (std::size_t i = 0; i < rays.size(); ++i) {
-                if (known_issue(&c, scene, rays[i], got[i], expected[i])) continue;
                 if (const char* why = invalid_record(got[i], rays[i], scene.triangle_count()))
                     violation(scene, rays, c.name, query_name, i, got[i], expected[i], why);
                 const bool differs =

@@ -168,11 +168,10 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     // Surely behind the origin, before tmin or after tmax. (Written so that a NaN from
     // overflowing corners falls through to the double path.)
     if (t + error <= 0.0f || t + error < tmin || t - error > tmax) return false;
-    // Surely inside [tmin, tmax], and accurate: decided in float. What is left (a large bound,
-    // or t within its bound of tmin or tmax, as for the second of two triangles sharing the
-    // edge a ray hits) is decided in double.
-    if (error <= t * kTrustedDistanceError && t - error >= tmin && t + error <= tmax &&
-        t < kInfinity) [[likely]] {
+    // Accurate: decided in float. Which path computes t depends only on the ray and the
+    // triangle, never on [tmin, tmax], so a triangle reports the same t in every traversal.
+    if (error <= t * kTrustedDistanceError && t < kInfinity) [[likely]] {
+        if (!(t >= tmin && t <= tmax)) return false;
         out = {t, s.v * inv_det, s.w * inv_det};
         return true;
     }

@@ -26,7 +26,8 @@ namespace {
 struct FilterContext {
     RTCIntersectContext base;  // first member: Embree passes &base back to the filter
     const Triangle* triangles;
-    Hit* occluders;  // null for closest-hit queries
+    const Ray* rays;  // the batch, as given (Embree's copy has tmin clamped, tfar moved)
+    Hit* occluders;   // null for closest-hit queries
 };
 
 void filter_candidates(const RTCFilterFunctionNArguments* args) {
@@ -35,21 +36,16 @@ void filter_candidates(const RTCFilterFunctionNArguments* args) {
     for (unsigned lane = 0; lane < n; ++lane) {
         if (args->valid[lane] != -1) continue;
         const auto prim = RTCHitN_primID(args->hit, n, lane);
-        const Ray ray{{RTCRayN_org_x(args->ray, n, lane), RTCRayN_org_y(args->ray, n, lane),
-                       RTCRayN_org_z(args->ray, n, lane)},
-                      {RTCRayN_dir_x(args->ray, n, lane), RTCRayN_dir_y(args->ray, n, lane),
-                       RTCRayN_dir_z(args->ray, n, lane)},
-                      RTCRayN_tnear(args->ray, n, lane),
-                      kInfinity};
+        const unsigned id = RTCRayN_id(args->ray, n, lane);
+        const Ray& ray = context->rays[id];
         TriangleHit ours;
-        if (!hit_distance(make_watertight_ray(ray), context->triangles[prim], ray.tmin, kInfinity,
+        if (!hit_distance(make_watertight_ray(ray), context->triangles[prim], ray.tmin, ray.tmax,
                           ours)) {
             args->valid[lane] = 0;  // reject: Embree goes on looking
             continue;
         }
         if (context->occluders)
-            context->occluders[RTCRayN_id(args->ray, n, lane)] = {ours.t, std::int32_t(prim),
-                                                                  ours.u, ours.v};
+            context->occluders[id] = {ours.t, std::int32_t(prim), ours.u, ours.v};
     }
 }
 
@@ -207,6 +203,7 @@ void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Q
                     [](const Ray& ray) { return ray.tmin > 0.0f; });
     context.base.filter = query == Query::any || spawned ? filter_candidates : nullptr;
     context.triangles = triangles_.data();
+    context.rays = rays.data();
     context.occluders = query == Query::any ? hits.data() : nullptr;
     for (std::size_t i = begin; i != end; ++i) hits[i] = Hit{};
     switch (mode_) {
@@ -278,6 +275,7 @@ void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit>
             rtcInitIntersectContext(&context.base);
             context.base.filter = filter_candidates;
             context.triangles = triangles_.data();
+            context.rays = rays.data();
             context.occluders = nullptr;
             RTCRayHit ray_hit = to_embree_hit(rays[i], i);
             rtcIntersect1(scene_, &context.base, &ray_hit);

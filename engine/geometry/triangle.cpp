@@ -3,6 +3,27 @@
 #include <glm/geometric.hpp>
 
 namespace edacrt {
+namespace {
+
+/// Whether a - b of two floats is exact in double (its significant bits fit in 53).
+bool exact_difference(float a, float b) {
+    const double difference = double(a) - double(b);
+    return difference + double(b) == double(a) && double(a) - difference == double(b);
+}
+
+/// Whether the corners' differences from the origin and from each other are exact in double.
+bool differences_exact(const glm::vec3& org, const Triangle& tri) {
+    for (int axis = 0; axis < 3; ++axis)
+        if (!exact_difference(tri.p0[axis], org[axis]) ||
+            !exact_difference(tri.p1[axis], org[axis]) ||
+            !exact_difference(tri.p2[axis], org[axis]) ||
+            !exact_difference(tri.p1[axis], tri.p0[axis]) ||
+            !exact_difference(tri.p2[axis], tri.p0[axis]))
+            return false;
+    return true;
+}
+
+}  // namespace
 
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
     const glm::dvec3 org(r.org);
@@ -50,8 +71,27 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
                          rounding_gamma<double>(2) * std::abs(t);
     // Against tmin and tmax in double: the float t may round onto them.
     const float t_float = float(t);
-    if (!(t >= double(tmin) && t <= double(tmax) && t_float < kInfinity && t > error))
-        return false;
+    if (!(t >= double(tmin) && t <= double(tmax) && t_float < kInfinity && t > error)) return false;
+    // Corners and an origin too far apart in magnitude (beyond 2^29) have inexact differences
+    // even in double, and then the inside test may pass anywhere on the plane (found by the
+    // fuzzer: a 1:1e29 triangle, an origin at 1e28). Such a hit must at least lie in the
+    // triangle's box, up to its error.
+    if (!differences_exact(r.org, tri)) {
+        const glm::dvec3 point = glm::dvec3(r.org) + t * d;
+        const glm::dvec3 lo =
+            glm::min(glm::dvec3(tri.p0), glm::min(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
+        const glm::dvec3 hi =
+            glm::max(glm::dvec3(tri.p0), glm::max(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
+        // Per axis: the distance's error, and the float inside test's resolution (2^-20 of the
+        // coordinates), by which a ray may be given a triangle it passes just beside.
+        const glm::dvec3 o(r.org);
+        const glm::dvec3 reach =
+            error * glm::abs(d) +
+            0x1p-20 * glm::max(glm::abs(o), glm::max(glm::abs(lo), glm::abs(hi)));
+        if (glm::any(glm::lessThan(point, lo - reach)) ||
+            glm::any(glm::greaterThan(point, hi + reach)))
+            return false;
+    }
     const ShearedTriangle<double> s = shear_triangle_in_double(r, tri);
     const double det = s.u + s.v + s.w;
     if (det == 0.0) return false;  // seen edge-on

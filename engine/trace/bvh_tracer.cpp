@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 
 #include "geometry/binning.h"
 #include "geometry/ray_box.h"
@@ -116,7 +115,6 @@ void BvhTracer::set_scene(const Scene& scene) {
 
 TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                   TraceDetail* detail) {
-    assert(rays.size() == hits.size());
     if (nodes_.empty()) {  // no triangles
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};

@@ -461,7 +461,6 @@ void EdacrtTracer::set_scene(const Scene& scene) {
 
 TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                      TraceDetail* detail) {
-    assert(rays.size() == hits.size());
     if (query == Query::closest)
         return detail ? trace_with<Query::closest, true>(rays, hits, detail)
                       : trace_with<Query::closest, false>(rays, hits, detail);

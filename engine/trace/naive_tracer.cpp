@@ -3,7 +3,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include <cassert>
 #include <functional>
 
 namespace edacrt {
@@ -48,7 +47,6 @@ void NaiveTracer::set_scene(const Scene& scene) { triangles_ = gather_triangles(
 
 TraceStats NaiveTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                     TraceDetail* detail) {
-    assert(rays.size() == hits.size());
     RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
     TraceStats stats;
     stats.rays = rays.size();

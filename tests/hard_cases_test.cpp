@@ -66,13 +66,13 @@ ReferenceHit closest_ld(const Scene& scene, const Ray& ray) {
 }
 
 /// Every tracer configuration under test; Embree in each of its modes.
-struct Method_ {
+struct Candidate {
     std::string name;
     std::function<std::unique_ptr<Tracer>()> make;
 };
 
-std::vector<Method_> all_methods() {
-    std::vector<Method_> out;
+std::vector<Candidate> all_methods() {
+    std::vector<Candidate> out;
     for (const Method m : {Method::naive, Method::edacrt, Method::dacrt, Method::bvh})
         out.push_back({std::string(method_name(m)), [m] { return make_tracer(m); }});
 #ifdef EDACRT_HAS_EMBREE
@@ -87,7 +87,7 @@ std::vector<Method_> all_methods() {
 void trace_every_way(
     const Scene& scene, const std::vector<Ray>& rays,
     const std::function<void(const std::string&, Query, const std::vector<Hit>&)>& check) {
-    for (const Method_& method : all_methods()) {
+    for (const Candidate& method : all_methods()) {
         const auto tracer = method.make();
         tracer->set_scene(scene);
         std::vector<Hit> hits(rays.size());
@@ -205,7 +205,7 @@ std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& ra
     for (std::size_t i = 0; all_hit && i < rays.size(); ++i) {
         EXPECT_GE(reference[i].prim, 0) << label << ": the reference misses ray " << i;
     }
-    for (const Method_& method : all_methods()) {
+    for (const Candidate& method : all_methods()) {
         const bool embree = method.name.starts_with("embree");
         const auto tracer = method.make();
         std::vector<Hit> hits(rays.size());
@@ -564,7 +564,7 @@ TEST(HardCases, HitsBeyondTheFloatRangeAreMissesNeverInfiniteDistances) {
                                    {{0, 0, -3e38f}, {0, 0, -1}}};  // nothing there
     const bool expected_hit[] = {true, true, true, false, false};
     const float expected_t[] = {1e38f, 3e38f, 3e38f, 0, 0};
-    for (const Method_& method : all_methods()) {
+    for (const Candidate& method : all_methods()) {
         const auto tracer = method.make();
         std::vector<Hit> hits(rays.size());
         try {

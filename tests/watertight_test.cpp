@@ -37,8 +37,8 @@ std::vector<Ray> rays_through(const std::vector<glm::vec3>& targets, const glm::
 
 /// From the centre (axis-aligned rays through the lattice) and, with inside_radius > 0, from
 /// four random inside points, with every method: no ray falls through. Embree's robust mode is
-/// not watertight through vertices (measured: 7 of 20,484 rays on a 5,120-triangle icosphere, with Embree
-/// called directly too): it may lose at most 1 ray in 1000, and the count is printed.
+/// not watertight through vertices (measured: 7 of 20,484 rays on a 5,120-triangle icosphere, with
+/// Embree called directly too): it may lose at most 1 ray in 1000, and the count is printed.
 void expect_no_misses(const std::string& spec, float inside_radius) {
     const Scene scene = make_builtin_scene(spec);
     const std::vector<glm::vec3> targets = vertex_and_edge_targets(scene);

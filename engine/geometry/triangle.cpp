@@ -23,41 +23,23 @@ bool differences_exact(const glm::vec3& org, const Triangle& tri) {
     return true;
 }
 
-}  // namespace
-
-ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
-    const glm::dvec3 org(r.org);
-    const glm::dvec3 A = glm::dvec3(tri.p0) - org;
-    const glm::dvec3 B = glm::dvec3(tri.p1) - org;
-    const glm::dvec3 C = glm::dvec3(tri.p2) - org;
-    const double sz = 1.0 / double(r.dir[r.kz]);
-    const double sx = double(r.dir[r.kx]) * sz, sy = double(r.dir[r.ky]) * sz;
-    ShearedTriangle<double> s;
-    s.ax = A[r.kx] - sx * A[r.kz];
-    s.ay = A[r.ky] - sy * A[r.kz];
-    s.bx = B[r.kx] - sx * B[r.kz];
-    s.by = B[r.ky] - sy * B[r.kz];
-    s.cx = C[r.kx] - sx * C[r.kz];
-    s.cy = C[r.ky] - sy * C[r.kz];
-    s.u = s.cx * s.by - s.cy * s.bx;
-    s.v = s.ax * s.cy - s.ay * s.cx;
-    s.w = s.bx * s.ay - s.by * s.ax;
-    s.az = sz * A[r.kz];
-    s.bz = sz * B[r.kz];
-    s.cz = sz * C[r.kz];
-    return s;
+/// The unnormalised normal in double. The corners are floats, so their differences are exact
+/// in double, the products of two differences are exact, and each component is rounded once:
+/// a sliver's plane keeps its orientation.
+glm::dvec3 normal_in_double(const Triangle& tri) {
+    const glm::dvec3 p0(tri.p0);
+    return glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
 }
 
-bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
-                          TriangleHit& out) {
-    // t from the plane: t = n.(p0 - o) / n.d. The corners are floats, so their differences are
-    // exact in double, the products of two differences are exact, and each component of n is
-    // rounded once: a sliver's plane keeps its orientation. (Weighting the sheared z by the
-    // barycentrics instead cancels twice for a long triangle hit close to its middle: 1e-4
-    // relative in double for a 1:1e6 sliver.)
-    const glm::dvec3 p0(tri.p0);
-    const glm::dvec3 n = glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
-    const glm::dvec3 a = p0 - glm::dvec3(r.org), d(r.dir);
+/// refine_hit_in_double with the pair already sheared in double.
+bool refine_sheared_hit(const WatertightRay& r, const Triangle& tri,
+                        const ShearedTriangle<double>& s, float tmin, float tmax,
+                        TriangleHit& out) {
+    // t from the plane, t = n.(p0 - o) / n.d, with n exact to one rounding (normal_in_double).
+    // (Weighting the sheared z by the barycentrics instead cancels twice for a long triangle
+    // hit close to its middle: 1e-4 relative in double for a 1:1e6 sliver.)
+    const glm::dvec3 n = normal_in_double(tri);
+    const glm::dvec3 a = glm::dvec3(tri.p0) - glm::dvec3(r.org), d(r.dir);
     const double den = glm::dot(n, d);
     if (den == 0.0) return false;  // parallel to the plane
     const double t = glm::dot(n, a) / den;
@@ -92,11 +74,40 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
             glm::any(glm::greaterThan(point, hi + reach)))
             return false;
     }
-    const ShearedTriangle<double> s = shear_triangle_in_double(r, tri);
     const double det = s.u + s.v + s.w;
     if (det == 0.0) return false;  // seen edge-on
     out = {t_float, float(s.v / det), float(s.w / det)};
     return true;
+}
+
+}  // namespace
+
+ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
+    const glm::dvec3 org(r.org);
+    const glm::dvec3 A = glm::dvec3(tri.p0) - org;
+    const glm::dvec3 B = glm::dvec3(tri.p1) - org;
+    const glm::dvec3 C = glm::dvec3(tri.p2) - org;
+    const double sz = 1.0 / double(r.dir[r.kz]);
+    const double sx = double(r.dir[r.kx]) * sz, sy = double(r.dir[r.ky]) * sz;
+    ShearedTriangle<double> s;
+    s.ax = A[r.kx] - sx * A[r.kz];
+    s.ay = A[r.ky] - sy * A[r.kz];
+    s.bx = B[r.kx] - sx * B[r.kz];
+    s.by = B[r.ky] - sy * B[r.kz];
+    s.cx = C[r.kx] - sx * C[r.kz];
+    s.cy = C[r.ky] - sy * C[r.kz];
+    s.u = s.cx * s.by - s.cy * s.bx;
+    s.v = s.ax * s.cy - s.ay * s.cx;
+    s.w = s.bx * s.ay - s.by * s.ax;
+    s.az = sz * A[r.kz];
+    s.bz = sz * B[r.kz];
+    s.cz = sz * C[r.kz];
+    return s;
+}
+
+bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
+                          TriangleHit& out) {
+    return refine_sheared_hit(r, tri, shear_triangle_in_double(r, tri), tmin, tmax, out);
 }
 
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
@@ -108,19 +119,15 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     const double w = edge_uncertain(f.w, f.bx * f.ay, f.by * f.ax) ? d.w : double(f.w);
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
     if (u + v + w == 0) return false;
-    return refine_hit_in_double(r, tri, tmin, tmax, out);
+    return refine_sheared_hit(r, tri, d, tmin, tmax, out);
 }
 
 glm::vec3 unit_normal(const Triangle& tri) {
-    const glm::dvec3 p0(tri.p0);
-    const glm::dvec3 n = glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
+    const glm::dvec3 n = normal_in_double(tri);
     const double length = glm::length(n);
     return length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
 }
 
-double triangle_area(const Triangle& tri) {
-    const glm::dvec3 p0(tri.p0);
-    return 0.5 * glm::length(glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0));
-}
+double triangle_area(const Triangle& tri) { return 0.5 * glm::length(normal_in_double(tri)); }
 
 }  // namespace edacrt

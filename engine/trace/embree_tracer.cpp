@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -29,6 +28,20 @@ struct FilterContext {
     const Ray* rays;  // the batch, as given (Embree's copy has tmin clamped, tfar moved)
     Hit* occluders;   // null for closest-hit queries
 };
+
+void filter_candidates(const RTCFilterFunctionNArguments* args);
+
+/// A query context; with `filtered`, candidates go through filter_candidates.
+FilterContext make_context(const Triangle* triangles, const Ray* rays, Hit* occluders,
+                           bool filtered) {
+    FilterContext context;
+    rtcInitIntersectContext(&context.base);
+    context.base.filter = filtered ? filter_candidates : nullptr;
+    context.triangles = triangles;
+    context.rays = rays;
+    context.occluders = occluders;
+    return context;
+}
 
 void filter_candidates(const RTCFilterFunctionNArguments* args) {
     const auto* context = reinterpret_cast<const FilterContext*>(args->context);
@@ -194,18 +207,17 @@ void EmbreeTracer::set_scene(const Scene& scene) {
 
 void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                std::size_t begin, std::size_t end) {
-    FilterContext context;
-    rtcInitIntersectContext(&context.base);
     // Camera rays (tmin = 0) never start on a surface: spare them the filter's cost (+40% for
     // packets). Spawned rays carry tmin > 0 (kSpawnTmin); occlusion needs the filter anyway.
-    const bool spawned =
-        std::any_of(rays.begin() + std::ptrdiff_t(begin), rays.begin() + std::ptrdiff_t(end),
-                    [](const Ray& ray) { return ray.tmin > 0.0f; });
-    context.base.filter = query == Query::any || spawned ? filter_candidates : nullptr;
-    context.triangles = triangles_.data();
-    context.rays = rays.data();
-    context.occluders = query == Query::any ? hits.data() : nullptr;
-    for (std::size_t i = begin; i != end; ++i) hits[i] = Hit{};
+    bool spawned = false;
+    for (std::size_t i = begin; i != end; ++i) {
+        check_ray_for_embree(rays[i], i);
+        spawned |= rays[i].tmin > 0.0f;
+        hits[i] = Hit{};
+    }
+    FilterContext context =
+        make_context(triangles_.data(), rays.data(), query == Query::any ? hits.data() : nullptr,
+                     query == Query::any || spawned);
     switch (mode_) {
         case EmbreeMode::single:
             for (std::size_t i = begin; i != end; ++i) {
@@ -271,12 +283,7 @@ void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit>
         if (!hit_distance(wray, tri, rays[i].tmin, rays[i].tmax, ours)) {
             // Traced without the filter (tmin = 0), yet not conservatively in front: again,
             // filtered, so Embree looks beyond it.
-            FilterContext context;
-            rtcInitIntersectContext(&context.base);
-            context.base.filter = filter_candidates;
-            context.triangles = triangles_.data();
-            context.rays = rays.data();
-            context.occluders = nullptr;
+            FilterContext context = make_context(triangles_.data(), rays.data(), nullptr, true);
             RTCRayHit ray_hit = to_embree_hit(rays[i], i);
             rtcIntersect1(scene_, &context.base, &ray_hit);
             hits[i] = from_embree(ray_hit);
@@ -296,7 +303,6 @@ void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit>
 TraceStats EmbreeTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                      TraceDetail*) {
     if (!scene_) throw InputError("Embree: no scene to trace (set_scene failed or never ran)");
-    for (std::size_t i = 0; i < rays.size(); ++i) check_ray_for_embree(rays[i], i);
     // Ranges of whole packets, large enough for streams to pay off.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
         trace_range(rays, hits, query, range.begin(), range.end());

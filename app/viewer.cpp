@@ -201,32 +201,10 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         ui.seed = int(number());
     else if (key == "pause")
         ui.paused = number() != 0;
-    else if (key == "bins")
-        p.bins = int(number());
-    else if (key == "sample-count")
-        p.sample_count = std::uint32_t(number());
-    else if (key == "sample-threshold")
-        p.sample_threshold = std::uint32_t(number());
-    else if (key == "leaf-rays")
-        p.leaf_rays = std::uint32_t(number());
-    else if (key == "leaf-tris")
-        p.leaf_tris = std::uint32_t(number());
-    else if (key == "cost-leaf-max-tris")
-        p.cost_leaf_max_tris = std::uint32_t(number());
-    else if (key == "c-t")
-        p.cost_traversal = float(number());
-    else if (key == "c-i")
-        p.cost_intersect = float(number());
-    else if (key == "c-bv")
-        p.cost_filter = float(number());
-    else if (key == "c-child")
-        p.cost_child = float(number());
-    else if (key == "filter-skip")
-        p.filter_skip = number() != 0;
-    else if (key == "sampling")
-        p.sampling = number() != 0;
-    else if (key == "sampling-seed")
-        p.seed = std::uint32_t(number());
+    else if (key == "preset")
+        p = preset_params(value);
+    else if (const ParamInfo* info = find_param(key))
+        set_param(p, *info, value);
     else if (key == "exposure") {
         const auto exposure = float(number());
         validate_exposure(exposure);

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "scene/builtin_scenes.h"
+#include "util/error.h"
 #include "util/output_file.h"
 
 namespace edacrt::cli {
@@ -27,25 +28,59 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
     command.add_option("--stats", options.stats_path,
                        "write timings and counters to this JSON file");
 
-    // EDACRT (and, where they apply, DACRT) parameters; see engine/trace/edacrt_params.h.
-    EdacrtParams& p = options.edacrt;
-    const auto param = [&](const char* name, auto& value, const char* what) {
-        command.add_option(name, value, what)->capture_default_str()->group("EDACRT parameters");
-    };
-    param("--bins", p.bins, "K, bins per split (K-1 candidate splits)");
-    param("--sample-threshold", p.sample_threshold, "nodes with more rays sample them");
-    param("--sample-count", p.sample_count, "rays sampled per node");
-    param("--leaf-rays", p.leaf_rays, "brute force when rays <= this");
-    param("--leaf-tris", p.leaf_tris, "brute force when triangles <= this");
-    param("--cost-leaf-max-tris", p.cost_leaf_max_tris,
-          "the cost test may make leaves only this small");
-    param("--c-t", p.cost_traversal, "C_T, cost of a split per ray");
-    param("--c-i", p.cost_intersect, "C_I, cost of a ray-triangle test");
-    param("--c-bv", p.cost_filter, "C_bv, cost of filtering a ray");
-    param("--c-child", p.cost_child, "C_child, per-triangle cost of an unfiltered ray");
-    param("--filter-skip", p.filter_skip, "skip filtering when most rays hit the child (0/1)");
-    param("--sampling", p.sampling, "estimate hit ratios by ray sampling (0/1)");
-    param("--sampling-seed", p.seed, "seed of the per-node ray sampling");
+    // EDACRT (and, where they apply, DACRT) parameters, generated from their descriptions
+    // (engine/trace/edacrt_params.h): a preset first, then the flags given override it.
+    const std::string group = "EDACRT parameters";
+    std::string presets;
+    for (std::string_view name : preset_names())
+        presets += std::string(presets.empty() ? "" : "|") += name;
+    command
+        .add_option("--preset", options.preset,
+                    "start from a parameter preset: " + presets +
+                        " (paper: the paper's choices; dacrt: the DACRT baseline)")
+        ->capture_default_str()
+        ->check([](const std::string& name) -> std::string {
+            try {
+                preset_params(name);
+                return {};
+            } catch (const InputError& e) {
+                return e.what();
+            }
+        })
+        ->group(group);
+    options.param_values.assign(edacrt_param_info().size(), {});
+    for (std::size_t i = 0; i < edacrt_param_info().size(); ++i) {
+        const ParamInfo& info = edacrt_param_info()[i];
+        std::string help(info.help);
+        if (info.kind == ParamInfo::Kind::choice) {
+            help += " One of:";
+            for (std::string_view name : info.choices) help += std::string(" ") += name;
+            help += ".";
+        }
+        command.add_option("--" + std::string(info.key), options.param_values[i], help)
+            ->default_str(param_text(EdacrtParams{}, info))
+            ->check([&info](const std::string& text) -> std::string {
+                try {
+                    EdacrtParams scratch;
+                    set_param(scratch, info, text);
+                    return {};
+                } catch (const InputError& e) {
+                    return e.what();
+                }
+            })
+            ->group(group);
+    }
+    command.parse_complete_callback([&options] {
+        try {
+            options.edacrt = preset_params(options.preset);
+            for (std::size_t i = 0; i < options.param_values.size(); ++i)
+                if (!options.param_values[i].empty())
+                    set_param(options.edacrt, edacrt_param_info()[i], options.param_values[i]);
+            validate(options.edacrt);
+        } catch (const InputError& e) {
+            throw CLI::ValidationError(e.what());
+        }
+    });
 }
 
 std::unique_ptr<Tracer> make_tracer(const CommonOptions& options) {

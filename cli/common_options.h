@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 #include "trace/edacrt_params.h"
@@ -21,7 +22,9 @@ struct CommonOptions {
     std::string embree_mode{embree_mode_name(kDefaultEmbreeMode)};
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
-    EdacrtParams edacrt;
+    std::string preset = "default";
+    std::vector<std::string> param_values;  // as given, per edacrt_param_info(); empty: not given
+    EdacrtParams edacrt;                    // the preset with the given values applied
 };
 
 void add_common_options(CLI::App& command, CommonOptions& options);

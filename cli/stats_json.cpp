@@ -8,6 +8,9 @@ nlohmann::json to_json(const TraceDetail& detail) {
     nlohmann::json levels = nlohmann::json::array();
     for (std::size_t d = 0; d < detail.levels.size(); ++d) {
         const LevelStats& l = detail.levels[d];
+        const auto mean = [&](double sum) {
+            return l.alpha_children ? sum / double(l.alpha_children) : 0.0;
+        };
         levels.push_back({{"level", d},
                           {"nodes", l.nodes},
                           {"leaves", l.leaves},
@@ -17,12 +20,23 @@ nlohmann::json to_json(const TraceDetail& detail) {
                           {"filters_skipped", l.filters_skipped},
                           {"triangles", l.triangles},
                           {"ray_box_tests", l.ray_box_tests},
+                          {"sample_box_tests", l.sample_box_tests},
+                          {"filter_box_tests", l.filter_box_tests},
                           {"ray_triangle_tests", l.ray_triangle_tests},
                           {"sampled_rays", l.sampled_rays},
                           {"candidate_splits", l.candidate_splits},
                           {"order_hits", l.order_hits},
                           {"order_misses", l.order_misses},
-                          {"seconds", l.seconds}});
+                          {"culled_by_distance", l.culled_by_distance},
+                          {"alpha_children", l.alpha_children},
+                          {"alpha_estimated_mean", mean(l.alpha_estimated_sum)},
+                          {"alpha_true_mean", mean(l.alpha_true_sum)},
+                          {"alpha_error_mean", mean(l.alpha_error_sum)},
+                          {"seconds_sampling", l.phase_seconds[0]},
+                          {"seconds_binning", l.phase_seconds[1]},
+                          {"seconds_filtering", l.phase_seconds[2]},
+                          {"seconds_leaves", l.phase_seconds[3]},
+                          {"seconds", l.seconds()}});
     }
     double box_sum = 0, tri_sum = 0, miss_sum = 0;
     std::uint32_t box_max = 0, tri_max = 0, deepest = 0;
@@ -35,7 +49,13 @@ nlohmann::json to_json(const TraceDetail& detail) {
         deepest = std::max<std::uint32_t>(deepest, r.deepest_level);
     }
     const double n = std::max<double>(1.0, double(detail.rays.size()));
-    return {{"levels", levels},
+    const RootStats& root = detail.root;
+    return {{"root",
+             {{"rays", root.rays},
+              {"entered", root.entered},
+              {"box_tests", root.box_tests},
+              {"seconds", root.seconds}}},
+            {"levels", levels},
             {"per_ray",
              {{"rays", detail.rays.size()},
               {"ray_box_tests_mean", box_sum / n},

@@ -141,8 +141,8 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         {"render --scene builtin:cornell --width 0 --out " + path("x.png"), "--width"},
         {"render --scene builtin:cornell --fov 200 --out " + path("x.png"), "field of view"},
         {"render --scene builtin:cornell --eye 1,2 --out " + path("x.png"), "--eye"},
-        {"render --scene builtin:cornell --bins 1 --out " + path("x.png"), "bins (K) must be in"},
-        {"render --scene builtin:cornell --c-i -1 --out " + path("x.png"), "C_I must be"},
+        {"render --scene builtin:cornell --bins 1 --out " + path("x.png"), "bins: '1' is outside [2, 256]"},
+        {"render --scene builtin:cornell --c-i -1 --out " + path("x.png"), "c-i: '-1' is outside"},
         {"frobnicate", "subcommand"},
     };
     for (const auto& c : cases) {

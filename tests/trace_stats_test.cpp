@@ -59,6 +59,9 @@ void expect_consistent(Tracer& tracer, const Scene& scene, Query query, const st
         level_box += level.ray_box_tests;
         level_tri += level.ray_triangle_tests;
         level_order_misses += level.order_misses;
+        EXPECT_EQ(level.ray_box_tests, level.sample_box_tests + level.filter_box_tests);
+        EXPECT_LE(level.culled_by_distance, level.filter_box_tests);
+        EXPECT_EQ(level.alpha_children, 2 * (level.nodes - level.leaves));
         const std::uint64_t inner = level.nodes - level.leaves;
         EXPECT_EQ(level.filters_done + level.filters_skipped, 2 * inner) << "level " << d;
         if (d + 1 < detail.levels.size()) {
@@ -69,10 +72,14 @@ void expect_consistent(Tracer& tracer, const Scene& scene, Query query, const st
         }
         EXPECT_LE(level.triangles, level.nodes * scene.triangle_count());
     }
-    EXPECT_EQ(level_box, totals.ray_box_tests);
+    // The root filter tests every ray once, outside the levels; one root node.
+    EXPECT_EQ(detail.root.rays, rays.size());
+    EXPECT_EQ(detail.root.box_tests, rays.size());
+    EXPECT_EQ(level_box + detail.root.box_tests, totals.ray_box_tests);
     EXPECT_EQ(level_tri, totals.ray_triangle_tests);
     EXPECT_EQ(level_order_misses, ray_order_misses);
-    EXPECT_LE(detail.levels[0].rays_in, rays.size());
+    EXPECT_EQ(detail.levels[0].nodes, 1u);
+    EXPECT_EQ(detail.levels[0].rays_in, detail.root.entered);
     EXPECT_EQ(detail.levels[0].triangles, detail.levels[0].nodes * scene.triangle_count());
     EXPECT_GT(detail.levels[0].order_hits + detail.levels[0].order_misses, 0u);
 }
@@ -93,7 +100,9 @@ TEST(TraceStats, FilterCountsFollowTheFilterSkipSetting) {
     std::vector<Hit> hits(rays.size());
     for (const bool skip : {false, true}) {
         EdacrtParams params;
-        params.filter_skip = skip;
+        // With a huge C_bv the per-triangle rule skips everywhere (the paper's rule would still
+        // filter inner children with alpha <= 1/2).
+        params.filter_skip = skip ? FilterSkip::triangles : FilterSkip::off;
         params.cost_filter = skip ? 1e9f : params.cost_filter;  // skipping everywhere
         EdacrtTracer tracer(params);
         tracer.set_scene(scene);

@@ -244,7 +244,8 @@ std::vector<Variant> variants() {
         p.sample_count = 1;
         p.sample_threshold = 1;
     });
-    edacrt("filter skip off", [](EdacrtParams& p) { p.filter_skip = false; });
+    edacrt("filter skip off", [](EdacrtParams& p) { p.filter_skip = FilterSkip::off; });
+    edacrt("paper preset", [](EdacrtParams& p) { p = paper_params(); });
     edacrt("leaf by cost anywhere", [](EdacrtParams& p) { p.cost_leaf_max_tris = 1'000'000; });
     edacrt("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
     return out;

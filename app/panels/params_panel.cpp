@@ -1,45 +1,77 @@
-// EDACRT parameters: every field of EdacrtParams; any change re-renders (the viewer compares
-// the settings each frame).
+// EDACRT parameters: a widget with a tooltip for every parameter, generated from their
+// descriptions (engine/trace/edacrt_params.h); any change re-renders (the viewer compares the
+// settings each frame).
 #include <imgui.h>
 
 #include <algorithm>
+#include <string>
 
 #include "viewer_state.h"
 
 namespace edacrt::app {
 namespace {
 
-bool input_u32(const char* label, std::uint32_t& value, int low, int high) {
-    int v = int(std::min<std::uint32_t>(value, std::uint32_t(high)));
-    if (!ImGui::InputInt(label, &v)) return false;
-    value = std::uint32_t(std::clamp(v, low, high));
-    return true;
+void tooltip(const ParamInfo& info) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    ImGui::TextUnformatted(info.help.data(), info.help.data() + info.help.size());
+    ImGui::TextDisabled("--%.*s", int(info.key.size()), info.key.data());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
+void widget(EdacrtParams& p, const ParamInfo& info) {
+    const std::string label(info.label);
+    const double value = info.get(p);
+    switch (info.kind) {
+        case ParamInfo::Kind::integer: {
+            // ImGui edits an int; the widest ranges (the seed) are clamped to what it holds.
+            const double high = std::min(info.max, 2147483647.0);
+            int v = int(std::min(value, high));
+            if (ImGui::InputInt(label.c_str(), &v))
+                info.set(p, std::clamp(double(v), info.min, high));
+            break;
+        }
+        case ParamInfo::Kind::real: {
+            auto v = float(value);
+            if (ImGui::SliderFloat(label.c_str(), &v, float(info.min), float(info.ui_max)))
+                info.set(p, std::clamp(double(v), info.min, info.max));
+            break;
+        }
+        case ParamInfo::Kind::choice: {
+            const std::string_view current = info.choices[std::size_t(value)];
+            if (ImGui::BeginCombo(label.c_str(), std::string(current).c_str())) {
+                for (std::size_t i = 0; i < info.choices.size(); ++i) {
+                    const std::string name(info.choices[i]);
+                    if (ImGui::Selectable(name.c_str(), i == std::size_t(value)))
+                        info.set(p, double(i));
+                }
+                ImGui::EndCombo();
+            }
+            break;
+        }
+    }
+    tooltip(info);
 }
 
 }  // namespace
 
 void draw_params_panel(ViewerState& s) {
     ImGui::SetNextWindowPos(ImVec2(10, 430), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("EDACRT parameters");
     EdacrtParams& p = s.ui.params;
     if (s.ui.method != Method::edacrt && s.ui.method != Method::dacrt)
         ImGui::TextDisabled("(used by edacrt and dacrt only)");
-    ImGui::SliderInt("bins K", &p.bins, 2, 64);
-    input_u32("sample count", p.sample_count, 1, 100000);
-    input_u32("sample threshold", p.sample_threshold, 1, 100000000);
-    input_u32("leaf rays", p.leaf_rays, 1, 1000000);
-    input_u32("leaf triangles", p.leaf_tris, 1, 1000000);
-    input_u32("cost-leaf max tris", p.cost_leaf_max_tris, 1, 100000000);
-    ImGui::SliderFloat("C_T", &p.cost_traversal, 0.0f, 16.0f);
-    ImGui::SliderFloat("C_I", &p.cost_intersect, 0.01f, 16.0f);
-    ImGui::SliderFloat("C_bv", &p.cost_filter, 0.0f, 16.0f);
-    ImGui::SliderFloat("C_child", &p.cost_child, 0.01f, 16.0f);
-    ImGui::Checkbox("filter skipping", &p.filter_skip);
-    ImGui::SameLine();
-    ImGui::Checkbox("ray sampling", &p.sampling);
-    input_u32("sampling seed", p.seed, 0, 1 << 30);
-    if (ImGui::Button("defaults")) p = EdacrtParams{};
+    else if (s.ui.method == Method::dacrt)
+        ImGui::TextDisabled("(dacrt: hit ratio, order and filter skipping are DACRT's)");
+    ImGui::TextUnformatted("preset:");
+    for (std::string_view name : preset_names()) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton(std::string(name).c_str())) p = preset_params(name);
+    }
+    for (const ParamInfo& info : edacrt_param_info()) widget(p, info);
     ImGui::End();
 }
 

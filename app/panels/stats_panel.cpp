@@ -39,19 +39,42 @@ void draw_stats_panel(ViewerState& s) {
     const double rays = double(std::max<std::size_t>(detail->rays.size(), 1));
     ImGui::Text("%zu camera rays: %.1f ray-box and %.1f ray-triangle tests per ray",
                 detail->rays.size(), double(box) / rays, double(tri) / rays);
+    if (!levels.empty())
+        ImGui::Text("one recursion; %llu rays entered the scene box",
+                    static_cast<unsigned long long>(detail->root.entered));
     if (levels.empty()) {
         ImGui::TextDisabled("(%s has no recursion levels)",
                             std::string(method_name(s.ui.method)).c_str());
     } else {
         const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
-                                      ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
-        const char* headers[] = {"level",     "nodes",      "leaves", "rays in",   "rays down",
-                                 "filtered",  "skipped",    "tris",   "box tests", "tri tests",
-                                 "order hit", "order miss", "ms"};
-        if (ImGui::BeginTable("levels", 13, flags, ImVec2(0, 200))) {
+                                      ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
+                                      ImGuiTableFlags_SizingFixedFit;
+        // Order: of the rays that hit both children's boxes and found their hit below, the
+        // share whose hit was in the child visited first. alpha: estimated / true hit ratio.
+        const char* headers[] = {"level",      "nodes",      "leaves",     "rays in",
+                                 "rays down",  "filtered",   "skipped",    "tris",
+                                 "sample box", "filter box", "tri tests",  "order 1st",
+                                 "culled",     "alpha est",  "alpha true", "ms"};
+        if (ImGui::BeginTable("levels", 16, flags, ImVec2(0, 200))) {
             for (const char* h : headers) ImGui::TableSetupColumn(h);
-            ImGui::TableSetupScrollFreeze(0, 1);
+            ImGui::TableSetupScrollFreeze(1, 1);
             ImGui::TableHeadersRow();
+            const auto count = [](std::uint64_t v) {
+                ImGui::TableNextColumn();
+                ImGui::Text("%llu", static_cast<unsigned long long>(v));
+            };
+            // The root filter: the batch against the scene box.
+            const RootStats& root = detail->root;
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted("scene box");
+            for (std::uint64_t v : {std::uint64_t(0), std::uint64_t(0), root.rays, root.entered,
+                                    std::uint64_t(1), std::uint64_t(0), std::uint64_t(0),
+                                    std::uint64_t(0), root.box_tests, std::uint64_t(0)})
+                count(v);
+            for (int i = 0; i < 4; ++i) ImGui::TableNextColumn();
+            ImGui::TableNextColumn();
+            ImGui::Text("%.2f", root.seconds * 1e3);
             LevelStats total;
             for (std::size_t i = 0; i <= levels.size(); ++i) {
                 const bool is_total = i == levels.size();
@@ -61,13 +84,21 @@ void draw_stats_panel(ViewerState& s) {
                 ImGui::TableNextColumn();
                 is_total ? ImGui::TextUnformatted("total") : ImGui::Text("%zu", i);
                 for (std::uint64_t v : {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
-                                        l.filters_skipped, l.triangles, l.ray_box_tests,
-                                        l.ray_triangle_tests, l.order_hits, l.order_misses}) {
-                    ImGui::TableNextColumn();
-                    ImGui::Text("%llu", static_cast<unsigned long long>(v));
-                }
+                                        l.filters_skipped, l.triangles, l.sample_box_tests,
+                                        l.filter_box_tests, l.ray_triangle_tests})
+                    count(v);
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2f", l.seconds * 1e3);
+                const std::uint64_t ordered = l.order_hits + l.order_misses;
+                if (ordered > 0)
+                    ImGui::Text("%.0f%%", 100.0 * double(l.order_hits) / double(ordered));
+                count(l.culled_by_distance);
+                const double children = double(std::max<std::uint64_t>(l.alpha_children, 1));
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", l.alpha_estimated_sum / children);
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", l.alpha_true_sum / children);
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f", l.seconds() * 1e3);
             }
             ImGui::EndTable();
         }

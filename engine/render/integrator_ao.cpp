@@ -12,7 +12,7 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
     std::vector<Ray> rays;
     wf.camera_rays(begin, end, rays);
     std::vector<Hit> hits(rays.size());
-    if (!wf.trace_camera(rays, hits)) return false;
+    if (!wf.trace(rays, hits, Query::closest)) return false;
 
     // Compact the hits; their AO rays are consecutive, ao_samples per hit.
     std::vector<std::uint32_t> hit_pixels;

@@ -50,7 +50,7 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
     std::vector<std::uint8_t> alive, has_shadow;
     for (int depth = 0; !paths.empty(); ++depth) {
         hits.resize(rays.size());
-        if (!(depth == 0 ? wf.trace_camera(rays, hits) : wf.trace(rays, hits, Query::closest)))
+        if (!wf.trace(rays, hits, Query::closest))
             return false;
         const std::size_t n = rays.size();
         next_rays.resize(n);

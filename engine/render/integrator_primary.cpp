@@ -15,7 +15,7 @@ bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
     std::vector<Ray> rays;
     wf.camera_rays(begin, end, rays);
     std::vector<Hit> hits(rays.size());
-    if (!wf.trace_camera(rays, hits)) return false;
+    if (!wf.trace(rays, hits, Query::closest)) return false;
 
     const float far = std::max(wf.shading.diagonal, 1e-30f);
     const Aabb& box = wf.shading.bounds;

@@ -22,10 +22,10 @@
 namespace edacrt {
 namespace {
 
-// EdacrtTracer's per-batch buffers (a watertight ray, a slab ray, t_far and an id per ray),
-// the most any method keeps per ray.
+// EdacrtTracer's per-batch buffers (a watertight ray, a slab ray, t_far, an id, and the
+// partition's scratch id and flag per ray), the most any method keeps per ray.
 constexpr std::uint64_t kTracerBytesPerRay =
-    sizeof(WatertightRay) + sizeof(SlabRay) + sizeof(float) + sizeof(std::uint32_t);
+    sizeof(WatertightRay) + sizeof(SlabRay) + sizeof(float) + 2 * sizeof(std::uint32_t) + 1;
 
 // The path integrator's per-path state (PathState in integrator_path.cpp: throughput, pixel,
 // pdf).
@@ -71,7 +71,8 @@ std::string format_bytes(std::uint64_t bytes) {
 
 std::uint64_t trace_bytes_per_ray(bool detail) {
     return sizeof(Ray) + sizeof(Hit) + kTracerBytesPerRay +
-           (detail ? sizeof(RayStats) + sizeof(std::uint64_t) + sizeof(std::uint16_t) : 0);
+           // RecordingObserver: three path words and a depth per ray
+           (detail ? sizeof(RayStats) + 3 * sizeof(std::uint64_t) + sizeof(std::uint16_t) : 0);
 }
 
 std::uint64_t render_memory_bytes(const RenderSettings& settings,

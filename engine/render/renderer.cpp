@@ -34,13 +34,8 @@ Renderer::Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
 bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary_detail) {
     const auto start = std::chrono::steady_clock::now();
     PassStats stats;
-    if (primary_detail) {
-        primary_detail->levels.clear();
-        primary_detail->rays.clear();
-    }
-    Wavefront wf{scene_,    shading_,       tracer_,
-                 settings_, projection_,    std::uint32_t(film_.passes()),
-                 cancel,    primary_detail, stats};
+    Wavefront wf{scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
+                 cancel, stats};
     const std::size_t pixels = samples_.size();
     const std::size_t tile_pixels = wavefront_tile_pixels(settings_);
     for (std::size_t begin = 0; begin < pixels; begin += tile_pixels) {
@@ -59,6 +54,14 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
                 break;
         }
         if (!done) return false;
+    }
+    if (primary_detail) {
+        // The pass's camera rays again, untimed, as one batch: one recursion to show.
+        if (wf.cancelled()) return false;
+        std::vector<Ray> rays;
+        wf.camera_rays(0, pixels, rays);
+        std::vector<Hit> hits(rays.size());
+        tracer_.trace(rays, hits, Query::closest, primary_detail);
     }
     for (glm::vec3& sample : samples_)
         if (!std::isfinite(sample.x) || !std::isfinite(sample.y) || !std::isfinite(sample.z)) {

@@ -29,19 +29,4 @@ bool Wavefront::trace(std::span<const Ray> rays, std::span<Hit> hits, Query quer
     return true;
 }
 
-bool Wavefront::trace_camera(std::span<const Ray> rays, std::span<Hit> hits) {
-    if (!trace(rays, hits, Query::closest)) return false;
-    if (primary_detail) {
-        TraceDetail tile;
-        std::vector<Hit> again(rays.size());
-        tracer.trace(rays, again, Query::closest, &tile);
-        primary_detail->rays.insert(primary_detail->rays.end(), tile.rays.begin(), tile.rays.end());
-        if (primary_detail->levels.size() < tile.levels.size())
-            primary_detail->levels.resize(tile.levels.size());
-        for (std::size_t level = 0; level < tile.levels.size(); ++level)
-            primary_detail->levels[level] += tile.levels[level];
-    }
-    return true;
-}
-
 }  // namespace edacrt

@@ -41,7 +41,6 @@ struct Wavefront {
     const PinholeProjection& projection;
     std::uint32_t pass;               // the sample index of every pixel in this pass
     const std::atomic<bool>* cancel;  // checked before every batch
-    TraceDetail* primary_detail;      // when set, statistics of the camera rays are appended
     PassStats& stats;
 
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
@@ -55,9 +54,6 @@ struct Wavefront {
 
     /// Traces one batch (timed). Returns false, tracing nothing, when cancelled.
     bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);
-
-    /// trace() for camera rays: also records primary_detail from an untimed second pass.
-    bool trace_camera(std::span<const Ray> rays, std::span<Hit> hits);
 };
 
 // The integrators: each renders pixels [begin, end) of the pass into radiance[0, end - begin)

@@ -1,35 +1,248 @@
 #include "trace/edacrt_params.h"
 
+#include <array>
+#include <charconv>
 #include <cmath>
-#include <string>
+#include <limits>
+#include <sstream>
+#include <type_traits>
 
 #include "util/error.h"
 
 namespace edacrt {
 namespace {
 
+template <auto Member>
+double get_field(const EdacrtParams& p) {
+    return double(p.*Member);
+}
+
+template <auto Member>
+void set_field(EdacrtParams& p, double value) {
+    using T = std::remove_reference_t<decltype(p.*Member)>;
+    if constexpr (std::is_enum_v<T>)
+        p.*Member = static_cast<T>(int(value));
+    else
+        p.*Member = T(value);
+}
+
+template <auto Member>
+double get_choice(const EdacrtParams& p) {
+    return double(int(p.*Member));
+}
+
+constexpr std::array<std::string_view, 2> kHitRatios = {"sampled", "surface-area"};
+constexpr std::array<std::string_view, 3> kOrders = {"sampled", "direction-sign", "left-first"};
+constexpr std::array<std::string_view, 3> kFilterSkips = {"off", "paper", "triangles"};
+constexpr std::array<std::string_view, 3> kSmallNodes = {"every-ray", "capped", "surface-area"};
+constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};
+constexpr std::array<std::string_view, 3> kPresets = {"default", "paper", "dacrt"};
+
+constexpr double kCount = 1e9;                               // upper bound of the count parameters
+constexpr double kCost = std::numeric_limits<float>::max();  // costs: any finite float
+
+using Kind = ParamInfo::Kind;
+
+template <auto Member>
+constexpr ParamInfo integer(std::string_view key, std::string_view label, std::string_view help,
+                            double min, double max) {
+    return {key, label, help, Kind::integer,     min,
+            max, max,   {},   get_field<Member>, set_field<Member>};
+}
+
+template <auto Member>
+constexpr ParamInfo real(std::string_view key, std::string_view label, std::string_view help,
+                         double ui_max) {
+    return {key,   label,  help, Kind::real,        0.0,
+            kCost, ui_max, {},   get_field<Member>, set_field<Member>};
+}
+
+template <auto Member>
+constexpr ParamInfo choice(std::string_view key, std::string_view label, std::string_view help,
+                           std::span<const std::string_view> names) {
+    return {key,
+            label,
+            help,
+            Kind::choice,
+            0.0,
+            double(names.size() - 1),
+            0.0,
+            names,
+            get_choice<Member>,
+            set_field<Member>};
+}
+
+const std::array<ParamInfo, 16> kParams = {
+    integer<&EdacrtParams::bins>(
+        "bins", "bins K",
+        "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
+        "candidate splits per node (Section 3.1, after Wald 2007).",
+        2, 256),
+    choice<&EdacrtParams::binning>(
+        "binning", "binning",
+        "node-box: the bins span V, the node box, on its longest axis (the paper, Section 3.1). "
+        "centroids: they span the range of the centroids on that axis (Wald 2007), so no bin is "
+        "empty at the ends. Either falls back to the centroids' longest axis when all centroids "
+        "land in one bin.",
+        kBinnings),
+    choice<&EdacrtParams::hit_ratio>(
+        "hit-ratio", "hit ratio alpha",
+        "Where alpha_L, alpha_R in the cost C_T + C_I (alpha_L N_L + alpha_R N_R) come from. "
+        "sampled: the share of sampled rays hitting each child box (EDACRT, Section 3.2). "
+        "surface-area: child area / node area, which assumes uniform rays (DACRT).",
+        kHitRatios),
+    integer<&EdacrtParams::sample_threshold>(
+        "sample-threshold", "sample threshold",
+        "Nodes with more rays than this draw sample-count random rays to estimate alpha and the "
+        "order (Section 3.2; the paper uses 1000). Smaller nodes follow small-nodes.",
+        1, kCount),
+    integer<&EdacrtParams::sample_count>(
+        "sample-count", "sample count",
+        "Rays drawn (with replacement) per sampled node; each is tested against all 2(K-1) "
+        "candidate boxes (Section 3.2; the paper uses 100).",
+        1, kCount),
+    choice<&EdacrtParams::small_nodes>(
+        "small-nodes", "small nodes",
+        "How nodes with at most sample-threshold rays estimate alpha: every-ray tests all their "
+        "rays (exact, 2(K-1) box tests each), capped draws at most sample-count as large nodes "
+        "do, surface-area uses area ratios and the direction-sign order.",
+        kSmallNodes),
+    choice<&EdacrtParams::order>(
+        "order", "traversal order",
+        "Which child is visited first, so its hits cull the rays of the second (Section 3.3). "
+        "sampled: the child most sampled rays enter first (EDACRT). direction-sign: by the "
+        "majority sign of the rays' direction on the split axis (DACRT). left-first: no order.",
+        kOrders),
+    choice<&EdacrtParams::filter_skip>(
+        "filter-skip", "filter skipping",
+        "When a child gets its parent's rays unfiltered (Section 3.4): if alpha > 1 - C_bv / "
+        "(n_child C_child). paper: n_child C_child is what the child spends on a ray that misses "
+        "it, 2 C_bv (its two box tests) for an inner child, N C_I for a child that will be a "
+        "leaf. triangles: N C_child at any depth. off: always filter (DACRT).",
+        kFilterSkips),
+    integer<&EdacrtParams::leaf_rays>(
+        "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
+    integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",
+                                      "Brute force when a node has at most this many triangles.", 1,
+                                      kCount),
+    integer<&EdacrtParams::cost_leaf_max_tris>(
+        "cost-leaf-max-tris", "cost-leaf max tris",
+        "Not in the paper: nodes with at most this many triangles become leaves when no split "
+        "costs less than C_I N per ray. The cost prices both children as leaves, so in large "
+        "nodes it would stop the recursion early. 0 turns it off.",
+        0, kCount),
+    real<&EdacrtParams::cost_traversal>(
+        "c-t", "C_T", "C_T: cost per ray of a split, in ray-triangle tests (Section 3.2).", 16.0),
+    real<&EdacrtParams::cost_intersect>("c-i", "C_I",
+                                        "C_I: cost of one ray-triangle test (Section 3.2).", 16.0),
+    real<&EdacrtParams::cost_filter>(
+        "c-bv", "C_bv", "C_bv: cost of filtering one ray against a child box (Section 3.4).", 16.0),
+    real<&EdacrtParams::cost_child>(
+        "c-child", "C_child",
+        "C_child: per-triangle cost of an unfiltered ray, for filter-skip=triangles (Section "
+        "3.4).",
+        16.0),
+    integer<&EdacrtParams::seed>(
+        "sampling-seed", "sampling seed",
+        "Seed of the per-node ray sampling; a node's draws depend only on it, the node's depth "
+        "and its ray count.",
+        0, 4294967295.0),
+};
+
 void require(bool ok, const std::string& what) {
     if (!ok) throw InputError("EDACRT parameter " + what);
 }
 
+std::string list(std::span<const std::string_view> names) {
+    std::string out;
+    for (std::string_view name : names) out += std::string(out.empty() ? "" : "|") += name;
+    return out;
+}
+
+std::string range_text(const ParamInfo& info) {
+    std::ostringstream out;
+    out.precision(10);
+    out << "[" << info.min << ", " << info.max << "]";
+    return out.str();
+}
+
 }  // namespace
 
+EdacrtParams paper_params() {
+    EdacrtParams p;
+    p.binning = Binning::node_box;
+    p.small_nodes = SmallNodes::every_ray;
+    p.filter_skip = FilterSkip::paper;
+    p.cost_leaf_max_tris = 0;
+    p.sample_threshold = 1000;
+    p.sample_count = 100;
+    return p;
+}
+
+EdacrtParams dacrt_params(EdacrtParams params) {
+    params.hit_ratio = HitRatio::surface_area;
+    params.order = TraversalOrder::direction_sign;
+    params.filter_skip = FilterSkip::off;
+    return params;
+}
+
+EdacrtParams preset_params(std::string_view name) {
+    if (name == kPresets[0]) return EdacrtParams{};
+    if (name == kPresets[1]) return paper_params();
+    if (name == kPresets[2]) return dacrt_params();
+    throw InputError("unknown preset '" + std::string(name) + "' (" + list(kPresets) + ")");
+}
+
+std::span<const std::string_view> preset_names() { return kPresets; }
+
+std::span<const ParamInfo> edacrt_param_info() { return kParams; }
+
+const ParamInfo* find_param(std::string_view key) {
+    for (const ParamInfo& info : kParams)
+        if (info.key == key) return &info;
+    return nullptr;
+}
+
 void validate(const EdacrtParams& p) {
-    require(p.bins >= 2 && p.bins <= 256, "bins (K) must be in [2, 256]");
-    require(p.sample_threshold >= 1, "sample_threshold must be at least 1");
-    require(p.sample_count >= 1, "sample_count must be at least 1");
-    require(p.leaf_rays >= 1, "leaf_rays must be at least 1");
-    require(p.leaf_tris >= 1, "leaf_tris must be at least 1");
-    const auto cost = [&](float value, const char* name) {
-        require(std::isfinite(value) && value >= 0.0f,
-                std::string(name) + " must be finite and non-negative");
+    for (const ParamInfo& info : kParams) {
+        const double value = info.get(p);
+        if (info.kind == Kind::choice)
+            require(value >= info.min && value <= info.max,
+                    std::string(info.key) + " must be one of " + list(info.choices));
+        else
+            require(std::isfinite(value) && value >= info.min && value <= info.max,
+                    std::string(info.key) + " must be in " + range_text(info));
+    }
+    require(p.cost_intersect > 0.0f, "c-i (C_I) must be positive");
+    require(p.cost_child > 0.0f, "c-child (C_child) must be positive");
+}
+
+void set_param(EdacrtParams& p, const ParamInfo& info, std::string_view text) {
+    const auto fail = [&](const std::string& why) {
+        throw InputError("EDACRT parameter " + std::string(info.key) + ": '" + std::string(text) +
+                         "' " + why);
     };
-    cost(p.cost_traversal, "C_T");
-    cost(p.cost_intersect, "C_I");
-    cost(p.cost_filter, "C_bv");
-    cost(p.cost_child, "C_child");
-    require(p.cost_intersect > 0.0f, "C_I must be positive");
-    require(p.cost_child > 0.0f, "C_child must be positive");
+    if (info.kind == Kind::choice) {
+        for (std::size_t i = 0; i < info.choices.size(); ++i)
+            if (info.choices[i] == text) return info.set(p, double(i));
+        fail("is not one of " + list(info.choices));
+    }
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value))
+        fail("is not a number");
+    if (info.kind == Kind::integer && value != std::floor(value)) fail("is not an integer");
+    if (value < info.min || value > info.max) fail("is outside " + range_text(info));
+    info.set(p, value);
+}
+
+std::string param_text(const EdacrtParams& p, const ParamInfo& info) {
+    const double value = info.get(p);
+    if (info.kind == Kind::choice) return std::string(info.choices[std::size_t(value)]);
+    std::ostringstream out;
+    out.precision(9);
+    out << value;
+    return out.str();
 }
 
 }  // namespace edacrt

@@ -1,40 +1,112 @@
 #pragma once
+// The parameters of the divide-and-conquer recursion, each described once (ParamInfo): the CLI
+// flags, the viewer's widgets and tooltips, the viewer's script keys and the range checks are
+// all generated from edacrt_param_info().
 #include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
 
 namespace edacrt {
 
-/// Parameters of EDACRT (Nabata, Iwasaki, Dobashi, Nishita, HPG 2013). With sampling off the
-/// same recursion is object-partitioning DACRT (Afra 2012): surface-area ratios instead of
-/// sampled hit ratios, rays always filtered, near child chosen by the rays' direction sign.
+/// Where a split's hit ratios alpha_L, alpha_R come from (Section 3.2).
+enum class HitRatio : std::uint8_t {
+    sampled,       // EDACRT: the share of sampled rays that hit each child box
+    surface_area,  // DACRT: child box area / node box area (uniform rays, Wald 2007)
+};
+
+/// Which child is visited first (Section 3.3).
+enum class TraversalOrder : std::uint8_t {
+    sampled,         // EDACRT: the child most sampled rays enter first
+    direction_sign,  // DACRT: the majority sign of the rays' direction on the split axis
+    left_first,      // no ordering: always the lower child first
+};
+
+/// When rays are passed to a child without filtering (Section 3.4).
+enum class FilterSkip : std::uint8_t {
+    off,        // DACRT: always filter
+    paper,      // alpha > 1 - C_bv / (n_child C_child), n_child C_child what the child spends
+                // on a ray that misses it: two box tests for an inner child, its triangles for
+                // a leaf
+    triangles,  // alpha > 1 - C_bv / (N C_child), N the child's triangle count, at any depth
+};
+
+/// How nodes with at most sample_threshold rays estimate their hit ratios.
+enum class SmallNodes : std::uint8_t {
+    every_ray,     // test all of the node's rays against every candidate box
+    capped,        // draw at most sample_count rays, as large nodes do
+    surface_area,  // surface-area ratios (and the direction-sign order)
+};
+
+/// The axis and range of the K bins (Section 3.1).
+enum class Binning : std::uint8_t {
+    node_box,   // the paper: K equal bins across V, the node box, on its longest axis
+    centroids,  // Wald 2007: K equal bins across the range the centroids span on that axis
+};
+
+/// Parameters of EDACRT (Nabata, Iwasaki, Dobashi, Nishita, HPG 2013). Section numbers refer to
+/// that paper. dacrt_params() turns the same recursion into object-partitioning DACRT (Afra
+/// 2012), paper_params() sets the paper's choices; README lists where the defaults differ.
 struct EdacrtParams {
-    int bins = 8;  // K: K - 1 candidate splits per node (Wald 2007); 8 measured faster than 16
-    std::uint32_t sample_threshold = 1000;  // nodes with more rays than this sample them...
-    std::uint32_t sample_count = 100;       // ...drawing this many; smaller nodes use all rays
-    std::uint32_t leaf_rays = 16;           // brute force when rays <= leaf_rays...
-    std::uint32_t leaf_tris = 16;           // ...or triangles <= leaf_tris
-    // The cost test may end the recursion only in nodes with at most this many triangles: it
-    // prices both children as leaves, so when the rays start inside overlapping child boxes
-    // (alpha ~ 1 for both) it would otherwise make leaves of the whole scene.
-    std::uint32_t cost_leaf_max_tris = 64;
-    float cost_traversal = 2.0f;  // C_T: per-ray cost of a split (two box tests)
-    float cost_intersect = 1.0f;  // C_I: one ray-triangle test
-    float cost_filter = 1.0f;     // C_bv: filtering one ray against a child box
-    float cost_child = 1.0f;      // C_child: per-triangle cost of an unfiltered ray
-    bool filter_skip = true;      // skip filtering when alpha > 1 - C_bv/(n C_child)
-    bool sampling = true;         // off: DACRT's surface-area ratios
-    std::uint32_t seed = 1;       // of the per-node ray sampling
+    int bins = 8;  // K
+    std::uint32_t sample_threshold = 1000;
+    std::uint32_t sample_count = 100;
+    SmallNodes small_nodes = SmallNodes::capped;
+    std::uint32_t leaf_rays = 16;
+    std::uint32_t leaf_tris = 16;
+    std::uint32_t cost_leaf_max_tris = 64;  // 0: no leaves by cost
+    float cost_traversal = 2.0f;            // C_T
+    float cost_intersect = 1.0f;            // C_I
+    float cost_filter = 1.0f;               // C_bv
+    float cost_child = 1.0f;                // C_child (FilterSkip::triangles)
+    HitRatio hit_ratio = HitRatio::sampled;
+    TraversalOrder order = TraversalOrder::sampled;
+    FilterSkip filter_skip = FilterSkip::paper;
+    Binning binning = Binning::centroids;
+    std::uint32_t seed = 1;  // of the per-node ray sampling
 
     bool operator==(const EdacrtParams&) const = default;
 };
 
-/// Parameters of the DACRT baseline: `params` with sampling and filter skipping off.
-inline EdacrtParams dacrt_params(EdacrtParams params = {}) {
-    params.sampling = false;
-    params.filter_skip = false;
-    return params;
-}
+/// The paper's choices: node-box binning, the paper's filter skipping, leaves by count only,
+/// every ray sampled in small nodes.
+EdacrtParams paper_params();
+
+/// DACRT (Afra 2012) on the same recursion: surface-area ratios, direction-sign order, always
+/// filtering. Other fields are taken from `params`.
+EdacrtParams dacrt_params(EdacrtParams params = {});
+
+/// The named presets: "default", "paper", "dacrt"; throws InputError for another name.
+EdacrtParams preset_params(std::string_view name);
+std::span<const std::string_view> preset_names();
 
 /// Throws InputError naming the first parameter out of range.
 void validate(const EdacrtParams& params);
+
+/// One parameter, described once.
+struct ParamInfo {
+    enum class Kind { integer, real, choice };
+    std::string_view key;    // CLI flag without "--", viewer script key
+    std::string_view label;  // viewer label: the paper's symbol where it has one
+    std::string_view help;   // meaning, unit, the paper's section
+    Kind kind;
+    double min, max;                            // valid range (integer, real)
+    double ui_max;                              // slider end in the viewer (real)
+    std::span<const std::string_view> choices;  // names, in enum order (choice)
+    double (*get)(const EdacrtParams&);         // a choice as its index
+    void (*set)(EdacrtParams&, double);
+};
+
+std::span<const ParamInfo> edacrt_param_info();
+
+/// The parameter with this key, or null.
+const ParamInfo* find_param(std::string_view key);
+
+/// Sets a parameter from text (a number, or a choice's name); throws InputError that names the
+/// parameter and its valid values.
+void set_param(EdacrtParams& params, const ParamInfo& info, std::string_view text);
+
+/// The parameter's value as set_param() reads it.
+std::string param_text(const EdacrtParams& params, const ParamInfo& info);
 
 }  // namespace edacrt

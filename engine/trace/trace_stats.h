@@ -22,22 +22,41 @@ struct TraceStats {
     }
 };
 
-/// One level of a divide-and-conquer recursion (level 0 is the scene box).
+/// One level of a divide-and-conquer recursion (level 0 is the scene box's node).
 struct LevelStats {
     std::uint64_t nodes = 0;
     std::uint64_t leaves = 0;
-    std::uint64_t rays_in = 0;          // rays entering the level's nodes
-    std::uint64_t rays_passed = 0;      // rays passed down to children (after filtering or not)
-    std::uint64_t filters_done = 0;     // child ray sets filtered...
-    std::uint64_t filters_skipped = 0;  // ...or passed down unfiltered (filter skipping)
-    std::uint64_t triangles = 0;        // summed over the level's nodes
-    std::uint64_t ray_box_tests = 0;    // filtering and sampling
+    std::uint64_t rays_in = 0;           // rays entering the level's nodes
+    std::uint64_t rays_passed = 0;       // rays passed down to children (after filtering or not)
+    std::uint64_t filters_done = 0;      // child ray sets filtered...
+    std::uint64_t filters_skipped = 0;   // ...or passed down unfiltered (filter skipping)
+    std::uint64_t triangles = 0;         // summed over the level's nodes
+    std::uint64_t ray_box_tests = 0;     // sample_box_tests + filter_box_tests
+    std::uint64_t sample_box_tests = 0;  // sampled rays against the candidates' boxes
+    std::uint64_t filter_box_tests = 0;  // rays filtered against the chosen children's boxes
     std::uint64_t ray_triangle_tests = 0;
     std::uint64_t sampled_rays = 0;
     std::uint64_t candidate_splits = 0;
-    std::uint64_t order_hits = 0;    // rays whose final hit lay in the child visited first...
+    // Order quality: rays that hit both children's boxes of a node of this level and found
+    // their final hit below it, by whether the hit was in the child visited first...
+    std::uint64_t order_hits = 0;
     std::uint64_t order_misses = 0;  // ...or in the one visited second
-    double seconds = 0.0;            // thread time spent in the level's own work
+    // Rays the second child's filter rejected only because their hit so far is nearer than
+    // its box: what visiting the near child first bought.
+    std::uint64_t culled_by_distance = 0;
+    // Sampling quality, over the children of the level's splits: the estimated alpha (sampled,
+    // or area ratio) against the true one, the share of the node's rays that hit the child.
+    std::uint64_t alpha_children = 0;
+    double alpha_estimated_sum = 0.0;
+    double alpha_true_sum = 0.0;
+    double alpha_error_sum = 0.0;  // of |estimated - true|
+    // Thread time in the level's own work, by phase (sampling, binning and partitioning,
+    // filtering, leaves); nodes of large levels run their phases in parallel.
+    double phase_seconds[4] = {0.0, 0.0, 0.0, 0.0};
+
+    double seconds() const {
+        return phase_seconds[0] + phase_seconds[1] + phase_seconds[2] + phase_seconds[3];
+    }
 
     LevelStats& operator+=(const LevelStats& o) {
         nodes += o.nodes;
@@ -48,11 +67,34 @@ struct LevelStats {
         filters_skipped += o.filters_skipped;
         triangles += o.triangles;
         ray_box_tests += o.ray_box_tests;
+        sample_box_tests += o.sample_box_tests;
+        filter_box_tests += o.filter_box_tests;
         ray_triangle_tests += o.ray_triangle_tests;
         sampled_rays += o.sampled_rays;
         candidate_splits += o.candidate_splits;
         order_hits += o.order_hits;
         order_misses += o.order_misses;
+        culled_by_distance += o.culled_by_distance;
+        alpha_children += o.alpha_children;
+        alpha_estimated_sum += o.alpha_estimated_sum;
+        alpha_true_sum += o.alpha_true_sum;
+        alpha_error_sum += o.alpha_error_sum;
+        for (int i = 0; i < 4; ++i) phase_seconds[i] += o.phase_seconds[i];
+        return *this;
+    }
+};
+
+/// The filter of the batch against the scene box, before the recursion.
+struct RootStats {
+    std::uint64_t rays = 0;
+    std::uint64_t entered = 0;  // rays that hit the scene box: the root node's rays
+    std::uint64_t box_tests = 0;
+    double seconds = 0.0;
+
+    RootStats& operator+=(const RootStats& o) {
+        rays += o.rays;
+        entered += o.entered;
+        box_tests += o.box_tests;
         seconds += o.seconds;
         return *this;
     }
@@ -63,7 +105,8 @@ struct RayStats {
     std::uint32_t ray_box_tests = 0;
     std::uint32_t ray_triangle_tests = 0;
     std::uint16_t deepest_level = 0;  // of the recursion nodes the ray entered
-    std::uint16_t order_misses = 0;   // levels where the final hit was in the second child
+    std::uint16_t order_misses = 0;   // levels where the ray hit both children's boxes and
+                                      // found its final hit in the one visited second
 };
 
 /// A candidate split of a recorded node: bins 0..j left, the rest right.
@@ -86,6 +129,7 @@ struct NodeRecord {
     int axis = -1;             // of the binning
     std::int32_t chosen = -1;  // index into candidates; -1 for a leaf
     bool left_first = true;
+    float alpha_true[2] = {0.0f, 0.0f};  // share of the node's rays that hit each child's box
     bool filter_skipped[2] = {false, false};
     std::uint32_t rays_passed[2] = {0, 0};
     std::vector<CandidateSplit> candidates;
@@ -103,6 +147,7 @@ struct RayVisit {
 
 /// Detailed statistics of one trace call. Tracers without a recursion leave `levels` empty.
 struct TraceDetail {
+    RootStats root;
     std::vector<LevelStats> levels;
     std::vector<RayStats> rays;
 

@@ -52,6 +52,7 @@ class Tracer {
             throw std::invalid_argument("Tracer::trace: " + std::to_string(rays.size()) +
                                         " rays but " + std::to_string(hits.size()) + " hits");
         if (detail) {
+            detail->root = RootStats{};
             detail->levels.clear();
             detail->rays.assign(rays.size(), RayStats{});
             detail->nodes.clear();
@@ -66,8 +67,8 @@ class Tracer {
                                    TraceDetail* detail) = 0;
 };
 
-/// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt with
-/// sampling and filter skipping off), embree takes `embree_mode`; the others ignore them.
+/// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt through
+/// dacrt_params()), embree takes `embree_mode`; the others ignore them.
 /// Throws InputError for bad params.
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {},
                                     EmbreeMode embree_mode = kDefaultEmbreeMode);

@@ -1,0 +1,184 @@
+#include "trace/edacrt_observer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace edacrt {
+namespace {
+
+std::uint16_t clamp_depth(int depth) { return std::uint16_t(std::min(depth, 65535)); }
+
+bool hits_box(const RayBatch& batch, std::uint32_t r, const Aabb& box, float t_far) {
+    float entry;
+    return intersect_box(batch.srays[r], box, t_far, entry);
+}
+
+}  // namespace
+
+RecordingObserver::RecordingObserver(TraceDetail& detail, const RayBatch& batch,
+                                     std::size_t ray_count)
+    : detail_(detail),
+      batch_(batch),
+      hit_path_(ray_count, 0),
+      both_(ray_count, 0),
+      both_at_hit_(ray_count, 0),
+      hit_depth_(ray_count, 0) {}
+
+RecordingObserver::Timer::~Timer() {
+    observer_.level(depth_).phase_seconds[int(phase_)] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+LevelStats& RecordingObserver::level(int depth) {
+    if (detail_.levels.size() <= std::size_t(depth)) detail_.levels.resize(std::size_t(depth) + 1);
+    return detail_.levels[std::size_t(depth)];
+}
+
+bool RecordingObserver::follows(const Node& node) const {
+    const auto r = std::uint32_t(detail_.follow_ray);
+    return detail_.follow_ray >= 0 &&
+           std::find(node.rays, node.rays + node.ray_count, r) != node.rays + node.ray_count;
+}
+
+void RecordingObserver::root(std::uint32_t* ids, std::size_t rays, std::size_t entered,
+                             double seconds) {
+    detail_.root.rays += rays;
+    detail_.root.entered += entered;
+    detail_.root.box_tests += rays;
+    detail_.root.seconds += seconds;
+    for (std::size_t i = 0; i < rays; ++i) ++detail_.rays[ids[i]].ray_box_tests;
+}
+
+RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
+    Visit visit;
+    visit.depth = node.depth;
+    if (detail_.nodes.size() < detail_.max_nodes) {
+        visit.node = std::int32_t(detail_.nodes.size());
+        NodeRecord& record = detail_.nodes.emplace_back();
+        record.parent = next_parent_;
+        if (next_parent_ >= 0)
+            detail_.nodes[std::size_t(next_parent_)].children[next_side_] = visit.node;
+        record.depth = clamp_depth(node.depth);
+        record.box = node.box;
+        record.rays = std::uint32_t(node.ray_count);
+        record.triangles = std::uint32_t(node.tri_count);
+    }
+    if (follows(node)) {
+        visit.followed = std::int64_t(detail_.follow.size());
+        detail_.follow.push_back({visit.node, clamp_depth(node.depth)});
+        visit.before = batch_.hits[detail_.follow_ray];
+    }
+    LevelStats& stats = level(node.depth);
+    ++stats.nodes;
+    stats.rays_in += node.ray_count;
+    stats.triangles += node.tri_count;
+    for (std::size_t i = 0; i < node.ray_count; ++i) {
+        std::uint16_t& deepest = detail_.rays[node.rays[i]].deepest_level;
+        deepest = std::max(deepest, clamp_depth(node.depth));
+    }
+    return visit;
+}
+
+void RecordingObserver::sampled(const Node& node, std::uint32_t samples, std::uint64_t tests) {
+    LevelStats& stats = level(node.depth);
+    stats.sampled_rays += samples;
+    stats.sample_box_tests += tests;
+    stats.ray_box_tests += tests;
+}
+
+void RecordingObserver::candidate(Visit& visit, const CandidateSplit& candidate) {
+    ++level(visit.depth).candidate_splits;
+    if (visit.node >= 0) detail_.nodes[std::size_t(visit.node)].candidates.push_back(candidate);
+}
+
+void RecordingObserver::split(Visit& visit, const Node& node, const Split& split) {
+    // Statistics only: these box tests are not counted anywhere.
+    std::size_t hits[2] = {0, 0};
+    const std::uint64_t bit = node.depth < kPathLevels ? std::uint64_t(1) << node.depth : 0;
+    for (std::size_t i = 0; i < node.ray_count; ++i) {
+        const std::uint32_t r = node.rays[i];
+        const bool left = hits_box(batch_, r, split.box[0], batch_.t_far[r]);
+        const bool right = hits_box(batch_, r, split.box[1], batch_.t_far[r]);
+        hits[0] += left;
+        hits[1] += right;
+        both_[r] = left && right ? both_[r] | bit : both_[r] & ~bit;
+    }
+    LevelStats& stats = level(node.depth);
+    float alpha_true[2];
+    for (int side = 0; side < 2; ++side) {
+        alpha_true[side] = float(double(hits[side]) / double(node.ray_count));
+        ++stats.alpha_children;
+        stats.alpha_estimated_sum += split.alpha[side];
+        stats.alpha_true_sum += alpha_true[side];
+        stats.alpha_error_sum += std::abs(double(split.alpha[side]) - alpha_true[side]);
+    }
+    if (visit.node >= 0) {
+        NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
+        record.leaf = false;
+        record.axis = split.axis;
+        record.chosen = split.last_left_bin;
+        record.left_first = split.first == 0;
+        record.alpha_true[0] = alpha_true[0];
+        record.alpha_true[1] = alpha_true[1];
+    }
+    if (visit.followed >= 0)
+        detail_.follow[std::size_t(visit.followed)].first_side_right = split.first == 1;
+}
+
+void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int side,
+                              int visit_index, bool skipped, const Node& child) {
+    LevelStats& stats = level(node.depth);
+    stats.rays_passed += child.ray_count;
+    if (skipped) {
+        ++stats.filters_skipped;
+    } else {
+        ++stats.filters_done;
+        stats.filter_box_tests += node.ray_count;
+        stats.ray_box_tests += node.ray_count;
+        for (std::size_t i = 0; i < node.ray_count; ++i) ++detail_.rays[node.rays[i]].ray_box_tests;
+        if (visit_index == 1)  // rejected rays that reach the box within [tmin, tmax]
+            for (std::size_t i = child.ray_count; i < node.ray_count; ++i) {
+                const std::uint32_t r = node.rays[i];
+                stats.culled_by_distance += hits_box(batch_, r, child.box, batch_.rays[r].tmax);
+            }
+    }
+    if (visit.node >= 0) {
+        NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
+        record.filter_skipped[side] = skipped;
+        record.rays_passed[side] = std::uint32_t(child.ray_count);
+    }
+    // The recursion enters the child (if it has rays) right after this hook.
+    next_parent_ = visit.node;
+    next_side_ = side;
+    if (visit.followed >= 0) {
+        const auto r = std::uint32_t(detail_.follow_ray);
+        detail_.follow[std::size_t(visit.followed)].passed[side] =
+            std::find(child.rays, child.rays + child.ray_count, r) != child.rays + child.ray_count;
+    }
+}
+
+void RecordingObserver::leaf(Visit& visit, const Node& node, std::uint64_t tests) {
+    LevelStats& stats = level(node.depth);
+    ++stats.leaves;
+    stats.ray_triangle_tests += tests;
+    if (visit.followed >= 0) {
+        RayVisit& v = detail_.follow[std::size_t(visit.followed)];
+        const Hit& now = batch_.hits[detail_.follow_ray];
+        v.leaf = true;
+        v.hit_here = now.prim != visit.before.prim || now.t != visit.before.t;
+    }
+}
+
+void RecordingObserver::finish(std::span<const Hit> hits) {
+    for (std::size_t r = 0; r < hits.size(); ++r) {
+        if (!hits[r].hit()) continue;
+        for (int d = 0; d < hit_depth_[r]; ++d) {
+            if (!((both_at_hit_[r] >> d) & 1)) continue;
+            const bool second = (hit_path_[r] >> d) & 1;
+            ++(second ? level(d).order_misses : level(d).order_hits);
+            detail_.rays[r].order_misses += second;
+        }
+    }
+}
+
+}  // namespace edacrt

@@ -1,0 +1,446 @@
+#pragma once
+// The EDACRT recursion (Nabata, Iwasaki, Dobashi, Nishita, "Efficient Divide-And-Conquer Ray
+// Tracing using Ray Sampling", HPG 2013, Algorithm 1); section numbers refer to that paper.
+// One recursion per batch. Large nodes run their partitions, binning and leaves in parallel;
+// every parallel step is deterministic, so the recursion is the same for any thread count.
+// Statistics are hooked in through the Observer (edacrt_observer.h); NullObserver compiles
+// them out.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/aabb.h"
+#include "geometry/binning.h"
+#include "geometry/ray.h"
+#include "geometry/ray_box.h"
+#include "geometry/triangle.h"
+#include "trace/edacrt_params.h"
+#include "trace/stable_partition.h"
+#include "trace/trace_stats.h"
+#include "trace/tracer.h"
+#include "util/hash_random.h"
+
+namespace edacrt {
+
+/// Per-frame triangle data, in scene order.
+struct EdacrtScene {
+    std::vector<Triangle> triangles;
+    std::vector<Aabb> bounds;
+    std::vector<glm::vec3> centroids;
+    Aabb box;
+};
+
+/// Per-ray data of one batch, indexed by ray number.
+struct RayBatch {
+    const Ray* rays;
+    const WatertightRay* wrays;
+    const SlabRay* srays;
+    float* t_far;  // the current search distance: the closest hit so far; -inf once an any-hit
+                   // ray is done, which removes it from every later filter and leaf
+    Hit* hits;
+};
+
+/// A subproblem: the rays that reach V, and the triangles whose bounds make up V.
+struct Node {
+    Aabb box;  // V
+    std::uint32_t* rays;
+    std::size_t ray_count;
+    std::uint32_t* tris;
+    std::size_t tri_count;
+    int depth;
+    std::uint64_t path;  // bit d set: this node's ancestor at depth d + 1 was visited second
+};
+
+/// The split chosen for a node.
+struct Split {
+    int axis;
+    float bin_origin, bin_scale;  // the bin of centroid c: (c[axis] - origin) * scale
+    int last_left_bin;            // bins 0..last_left_bin go left
+    Aabb box[2];                  // left, right
+    std::size_t count[2];
+    float alpha[2];  // estimated hit ratios
+    int first;       // the side visited first
+};
+
+/// The phases of a node's work, timed apart by statistics runs.
+enum class Phase { sampling, binning, filtering, leaves };
+
+/// Observer with empty hooks: the fast path. See RecordingObserver for what each hook means.
+struct NullObserver {
+    struct Visit {};
+    struct Timer {};
+    void root(std::uint32_t*, std::size_t, std::size_t, double) {}
+    Visit enter(const Node&) { return {}; }
+    Timer time(Phase, int) { return {}; }
+    void sampled(const Node&, std::uint32_t, std::uint64_t) {}
+    void sampled_ray(std::uint32_t, std::uint32_t) {}
+    void candidate(Visit&, const CandidateSplit&) {}
+    void split(Visit&, const Node&, const Split&) {}
+    void child(Visit&, const Node&, const Split&, int, int, bool, const Node&) {}
+    void leaf_ray(std::uint32_t, std::uint32_t) {}
+    void hit(std::uint32_t, const Node&) {}
+    void leaf(Visit&, const Node&, std::uint64_t) {}
+};
+
+/// Paths record the first 64 levels; order statistics cover those.
+inline constexpr int kPathLevels = 64;
+
+template <Query Q, class Observer>
+class Recursion {
+  public:
+    Recursion(const EdacrtParams& params, const EdacrtScene& scene, const RayBatch& batch,
+              PartitionScratch& scratch, Observer& observer)
+        : p_(params),
+          scene_(scene),
+          batch_(batch),
+          scratch_(scratch),
+          obs_(observer),
+          bin_bounds_(params.bins),
+          left_bounds_(params.bins),
+          right_bounds_(params.bins),
+          bin_count_(params.bins),
+          left_hits_(params.bins),
+          right_hits_(params.bins),
+          left_first_(params.bins),
+          right_first_(params.bins) {}
+
+    /// The ray-box and ray-triangle tests done so far.
+    const TraceStats& totals() const { return totals_; }
+
+    /// Moves the rays that reach `box` before their current hit to the front; returns how many.
+    std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box) {
+        totals_.ray_box_tests += count;
+        return partition(rays, count, scratch_, [&](std::uint32_t r) {
+            float entry;
+            return intersect_box(batch_.srays[r], box, batch_.t_far[r], entry);
+        });
+    }
+
+    /// Algorithm 1.
+    void run(const Node& node) {
+        if (node.ray_count == 0) return;
+        typename Observer::Visit visit = obs_.enter(node);
+        Split split;
+        if (node.ray_count <= p_.leaf_rays || node.tri_count <= p_.leaf_tris ||
+            !choose_split(node, split, visit)) {
+            leaf(node, visit);
+            return;
+        }
+        obs_.split(visit, node, split);
+        std::uint32_t* middle;
+        {
+            [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
+            middle =
+                node.tris + partition(node.tris, node.tri_count, scratch_, [&](std::uint32_t t) {
+                    return bin_of(split, scene_.centroids[t]) <= split.last_left_bin;
+                });
+        }
+        std::uint32_t* child_tris[2] = {node.tris, middle};
+        // Near child first (Section 3.3): its hits shorten t_far, which culls rays from the
+        // second child's filter. Filtering is skipped where it costs more than it saves
+        // (Section 3.4).
+        for (const int visit_index : {0, 1}) {
+            const int side = visit_index == 0 ? split.first : 1 - split.first;
+            Node child{split.box[side],   node.rays,      node.ray_count, child_tris[side],
+                       split.count[side], node.depth + 1, node.path};
+            if (visit_index == 1 && node.depth < kPathLevels)
+                child.path |= std::uint64_t(1) << node.depth;
+            const bool skipped = skip_filter(split, side);
+            if (!skipped) {
+                [[maybe_unused]] auto timer = obs_.time(Phase::filtering, node.depth);
+                child.ray_count = filter(node.rays, node.ray_count, child.box);
+            }
+            obs_.child(visit, node, split, side, visit_index, skipped, child);
+            run(child);
+        }
+    }
+
+  private:
+    /// Section 3.4: filtering costs C_bv for every ray; passing a ray unfiltered costs, if it
+    /// misses the child (1 - alpha of the rays), what the child then spends on it, n_child
+    /// C_child. Skip when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv /
+    /// (n_child C_child).
+    bool skip_filter(const Split& split, int side) const {
+        if (p_.filter_skip == FilterSkip::off) return false;
+        const float n = float(split.count[side]);
+        // n_child C_child. Paper: the child gets all the node's rays, more than leaf_rays, so
+        // it is a leaf by count exactly when it has at most leaf_tris triangles; a leaf tests
+        // each ray against those, an inner child against its two children's boxes.
+        const float wasted = p_.filter_skip == FilterSkip::triangles ? n * p_.cost_child
+                             : split.count[side] <= p_.leaf_tris     ? n * p_.cost_intersect
+                                                                     : 2.0f * p_.cost_filter;
+        return split.alpha[side] > 1.0f - p_.cost_filter / wasted;
+    }
+
+    int bin_of(const Split& split, const glm::vec3& centroid) const {
+        return bin_index((centroid[split.axis] - split.bin_origin) * split.bin_scale, p_.bins);
+    }
+
+    /// Binning (Section 3.1, after Wald 2007), the hit ratios (Section 3.2), the cost model and
+    /// the traversal order (Section 3.3). False when no split separates the triangles or, in
+    /// nodes of at most cost_leaf_max_tris triangles, none is cheaper than a leaf.
+    bool choose_split(const Node& node, Split& split, typename Observer::Visit& visit) {
+        {
+            [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
+            if (!bin(node, split)) return false;
+        }
+        const bool sampled = estimate_hit_ratios(node, split.axis);
+        const bool sampled_alpha = sampled && p_.hit_ratio == HitRatio::sampled;
+        const float box_area = node.box.surface_area();
+        // C(V -> {V_L, V_R}) = C_T + C_I (alpha_L N_L + alpha_R N_R), per ray of the node;
+        // a leaf costs C_I N.
+        float best_cost = node.tri_count <= p_.cost_leaf_max_tris
+                              ? p_.cost_intersect * float(node.tri_count)
+                              : kInfinity;
+        int best = -1;
+        std::size_t left_count = 0;
+        for (int j = 0; j < p_.bins - 1; ++j) {
+            left_count += bin_count_[j];
+            CandidateSplit c{left_bounds_[j], right_bounds_[j], std::uint32_t(left_count),
+                             std::uint32_t(node.tri_count - left_count)};
+            if (c.left_triangles == 0 || c.right_triangles == 0) {
+                c.cost = kInfinity;
+                obs_.candidate(visit, c);
+                continue;
+            }
+            if (sampled_alpha) {
+                c.alpha_left = float(left_hits_[j]) / float(samples_);
+                c.alpha_right = float(right_hits_[j]) / float(samples_);
+            } else {  // the surface-area heuristic's conditional probabilities
+                c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
+                c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
+            }
+            c.cost = p_.cost_traversal + p_.cost_intersect * (c.alpha_left * c.left_triangles +
+                                                              c.alpha_right * c.right_triangles);
+            obs_.candidate(visit, c);
+            if (c.cost < best_cost) {
+                best_cost = c.cost;
+                best = j;
+                split.count[0] = c.left_triangles;
+                split.count[1] = c.right_triangles;
+                split.alpha[0] = c.alpha_left;
+                split.alpha[1] = c.alpha_right;
+            }
+        }
+        if (best < 0) return false;
+        split.last_left_bin = best;
+        split.box[0] = left_bounds_[best];
+        split.box[1] = right_bounds_[best];
+        if (sampled && p_.order == TraversalOrder::sampled)
+            split.first = left_first_[best] >= right_first_[best] ? 0 : 1;
+        else if (p_.order == TraversalOrder::left_first)
+            split.first = 0;
+        else  // the near child by the majority sign of the rays' direction on the axis
+            split.first = 2 * count_negative(node, split.axis) <= node.ray_count ? 0 : 1;
+        return true;
+    }
+
+    /// Chooses the bins' axis and range and bins the node's triangles; false when they cannot
+    /// be separated (all centroids in one point).
+    bool bin(const Node& node, Split& split) {
+        if (p_.binning == Binning::node_box) {
+            split.axis = node.box.longest_axis();
+            if (set_range(split, node.box.lo[split.axis], node.box.hi[split.axis]) &&
+                fill_bins(node, split) > 1)
+                return true;
+        }
+        // Across the centroids' range on V's longest axis or, if they all coincide there,
+        // on the axis where they spread most.
+        const Aabb centroids = centroid_bounds(node);
+        split.axis = node.box.longest_axis();
+        if (!(centroids.hi[split.axis] > centroids.lo[split.axis]))
+            split.axis = centroids.longest_axis();
+        if (!set_range(split, centroids.lo[split.axis], centroids.hi[split.axis])) return false;
+        fill_bins(node, split);
+        return true;
+    }
+
+    bool set_range(Split& split, float lo, float hi) const {
+        const float width = hi - lo;
+        if (!(width > 0.0f)) return false;
+        split.bin_origin = lo;
+        split.bin_scale = float(p_.bins) * (1.0f - 1e-6f) / width;
+        return true;
+    }
+
+    Aabb centroid_bounds(const Node& node) const {
+        const auto extend = [&](const tbb::blocked_range<std::size_t>& range, Aabb box) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i)
+                box.extend(scene_.centroids[node.tris[i]]);
+            return box;
+        };
+        const tbb::blocked_range<std::size_t> all(0, node.tri_count, kParallelItems);
+        if (node.tri_count < kParallelItems) return extend(all, Aabb{});
+        // min and max are exact, so any grouping gives the same box
+        return tbb::parallel_reduce(all, Aabb{}, extend, [](Aabb a, const Aabb& b) {
+            a.extend(b);
+            return a;
+        });
+    }
+
+    /// Bins the triangles, then sweeps the bins from both ends: candidate j puts bins 0..j
+    /// left. Returns the number of non-empty bins.
+    int fill_bins(const Node& node, const Split& split) {
+        const int K = p_.bins;
+        struct Bins {
+            std::vector<Aabb> bounds;
+            std::vector<std::size_t> count;
+        };
+        const auto add = [&](const tbb::blocked_range<std::size_t>& range, Bins bins) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const std::uint32_t t = node.tris[i];
+                const int b = bin_of(split, scene_.centroids[t]);
+                bins.bounds[b].extend(scene_.bounds[t]);
+                ++bins.count[b];
+            }
+            return bins;
+        };
+        const Bins empty{std::vector<Aabb>(K), std::vector<std::size_t>(K, 0)};
+        const tbb::blocked_range<std::size_t> all(0, node.tri_count, kParallelItems);
+        const Bins bins = node.tri_count < kParallelItems
+                              ? add(all, empty)
+                              : tbb::parallel_reduce(all, empty, add, [K](Bins a, const Bins& b) {
+                                    for (int i = 0; i < K; ++i) {
+                                        a.bounds[i].extend(b.bounds[i]);
+                                        a.count[i] += b.count[i];
+                                    }
+                                    return a;
+                                });
+        int filled = 0;
+        for (int i = 0; i < K; ++i) {
+            bin_bounds_[i] = bins.bounds[i];
+            bin_count_[i] = bins.count[i];
+            filled += bins.count[i] > 0;
+        }
+        Aabb sweep;
+        for (int j = 0; j < K - 1; ++j) {
+            sweep.extend(bin_bounds_[j]);
+            left_bounds_[j] = sweep;
+        }
+        sweep = Aabb{};
+        for (int j = K - 2; j >= 0; --j) {
+            sweep.extend(bin_bounds_[j + 1]);
+            right_bounds_[j] = sweep;
+        }
+        return filled;
+    }
+
+    /// Ray sampling (Section 3.2): for every candidate, how many sampled rays hit each child
+    /// box, and which child each enters first. A ray that starts inside both boxes enters them
+    /// at the same distance; it counts for the child on the side it comes from along the split
+    /// axis. Returns false when this node takes surface-area ratios instead.
+    bool estimate_hit_ratios(const Node& node, int axis) {
+        const bool wanted =
+            p_.hit_ratio == HitRatio::sampled || p_.order == TraversalOrder::sampled;
+        const bool small = node.ray_count <= p_.sample_threshold;
+        if (!wanted || (small && p_.small_nodes == SmallNodes::surface_area)) return false;
+        [[maybe_unused]] auto timer = obs_.time(Phase::sampling, node.depth);
+        // Large nodes, and small ones under the `capped` policy, draw sample_count rays (with
+        // replacement) from a generator seeded by the node, so a batch traces the same way
+        // every time; otherwise every ray is a sample.
+        const bool draw =
+            !small || (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
+        samples_ = draw ? p_.sample_count : std::uint32_t(node.ray_count);
+        const int candidates = p_.bins - 1;
+        std::fill_n(left_hits_.begin(), candidates, 0);
+        std::fill_n(right_hits_.begin(), candidates, 0);
+        std::fill_n(left_first_.begin(), candidates, 0);
+        std::fill_n(right_first_.begin(), candidates, 0);
+        const std::uint32_t node_seed = hash_combine(
+            hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
+        const auto tests_per_sample = std::uint32_t(2 * candidates);
+        totals_.ray_box_tests += std::uint64_t(samples_) * tests_per_sample;
+        obs_.sampled(node, samples_, std::uint64_t(samples_) * tests_per_sample);
+        for (std::uint32_t s = 0; s < samples_; ++s) {
+            const std::uint32_t r =
+                draw ? node.rays[(std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >> 32]
+                     : node.rays[s];
+            obs_.sampled_ray(r, tests_per_sample);
+            const SlabRay& ray = batch_.srays[r];
+            const float t_far = batch_.t_far[r];
+            const bool left_on_tie = !std::signbit(ray.inv_dir[axis]);
+            for (int j = 0; j < candidates; ++j) {
+                float left_entry = 0.0f, right_entry = 0.0f;
+                const bool left = intersect_box(ray, left_bounds_[j], t_far, left_entry);
+                const bool right = intersect_box(ray, right_bounds_[j], t_far, right_entry);
+                left_hits_[j] += left;
+                right_hits_[j] += right;
+                const bool left_nearer =
+                    left_entry < right_entry || (left_entry == right_entry && left_on_tie);
+                left_first_[j] += left && (!right || left_nearer);
+                right_first_[j] += right && (!left || !left_nearer);
+            }
+        }
+        return true;
+    }
+
+    std::size_t count_negative(const Node& node, int axis) const {
+        const auto count = [&](const tbb::blocked_range<std::size_t>& range, std::size_t n) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i)
+                n += std::signbit(batch_.rays[node.rays[i]].dir[axis]);
+            return n;
+        };
+        const tbb::blocked_range<std::size_t> all(0, node.ray_count, kParallelItems);
+        if (node.ray_count < kParallelItems) return count(all, 0);
+        return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>());
+    }
+
+    /// Brute force: every ray against every triangle of the node, in parallel over rays when
+    /// the node is large (rays are independent). An any-hit ray that is already done (passed
+    /// down unfiltered) is skipped.
+    void leaf(const Node& node, typename Observer::Visit& visit) {
+        [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
+        const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const std::uint32_t r = node.rays[i];
+                float& t_far = batch_.t_far[r];
+                if (Q == Query::any && t_far == -kInfinity) continue;
+                const float tmin = batch_.rays[r].tmin;
+                const WatertightRay& wray = batch_.wrays[r];
+                TriangleHit hit;
+                std::size_t k = 0;
+                while (k < node.tri_count) {
+                    const std::uint32_t t = node.tris[k++];
+                    if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit)) continue;
+                    batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+                    obs_.hit(r, node);
+                    if constexpr (Q == Query::any) {
+                        t_far = -kInfinity;
+                        break;
+                    }
+                    t_far = hit.t;
+                }
+                obs_.leaf_ray(r, std::uint32_t(k));
+                tests += k;
+            }
+            return tests;
+        };
+        const tbb::blocked_range<std::size_t> all(0, node.ray_count, 16);
+        const std::uint64_t tests =
+            node.ray_count * node.tri_count < kParallelLeafTests
+                ? trace(all, 0)
+                : tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
+        totals_.ray_triangle_tests += tests;
+        obs_.leaf(visit, node, tests);
+    }
+
+    /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.
+    static constexpr std::size_t kParallelLeafTests = 32768;
+
+    const EdacrtParams& p_;
+    const EdacrtScene& scene_;
+    const RayBatch& batch_;
+    PartitionScratch& scratch_;
+    Observer& obs_;
+    TraceStats totals_;
+    // Binning and sampling scratch, sized K once and reused by every node.
+    std::vector<Aabb> bin_bounds_, left_bounds_, right_bounds_;
+    std::vector<std::size_t> bin_count_;
+    std::vector<std::uint32_t> left_hits_, right_hits_, left_first_, right_first_;
+    std::uint32_t samples_ = 0;
+};
+
+}  // namespace edacrt

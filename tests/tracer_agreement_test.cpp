@@ -278,6 +278,94 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerAgreement, ::testing::ValuesIn(kSceneName
                              return name;
                          });
 
+/// Every combination of EDACRT's switches (hit ratio, order, filter skipping, small-node
+/// policy, binning): 108 recursions, each exact. Small leaves make the recursion deep.
+class AblationSwitches : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
+    const Scene scene = test_scene(GetParam());
+    const Reference reference = make_reference(scene);
+    int combinations = 0;
+    for (int hit_ratio = 0; hit_ratio < 2; ++hit_ratio)
+        for (int order = 0; order < 3; ++order)
+            for (int skip = 0; skip < 3; ++skip)
+                for (int small = 0; small < 3; ++small)
+                    for (int binning = 0; binning < 2; ++binning) {
+                        EdacrtParams p;
+                        p.hit_ratio = HitRatio(hit_ratio);
+                        p.order = TraversalOrder(order);
+                        p.filter_skip = FilterSkip(skip);
+                        p.small_nodes = SmallNodes(small);
+                        p.binning = Binning(binning);
+                        p.leaf_rays = p.leaf_tris = 4;
+                        p.sample_threshold = 200;
+                        p.sample_count = 20;
+                        EdacrtTracer tracer(p);
+                        std::string label = std::string(GetParam()) + " / switches";
+                        for (const ParamInfo* info :
+                             {find_param("hit-ratio"), find_param("order"),
+                              find_param("filter-skip"), find_param("small-nodes"),
+                              find_param("binning")})
+                            label += " " + param_text(p, *info);
+                        expect_agreement(scene, reference, tracer, label, true);
+                        if (HasFatalFailure()) return;
+                        ++combinations;
+                    }
+    EXPECT_EQ(combinations, 108);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, AblationSwitches,
+                         ::testing::Values("builtin:soup:count=2000,seed=1", "coplanar",
+                                           "builtin:cornell"),
+                         [](const auto& info) {
+                             std::string name;
+                             for (const char c : std::string(info.param))
+                                 name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return name;
+                         });
+
+/// A batch large enough for the parallel paths (partitions of >= 8192 rays, leaves of >= 32768
+/// ray-triangle pairs), ray by ray against naive. (Parallel binning, from 8192 triangles, is
+/// checked against serial binning by the thread tests.)
+TEST(EdacrtLargeBatch, MatchesNaiveRayByRay) {
+    const Scene scene = make_builtin_scene("builtin:soup:count=2000,seed=6,size=0.3");
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Ray> rays;
+    const PinholeProjection projection(frame_box(scene.bounds()), 320, 320);
+    for (int y = 0; y < 320; ++y)
+        for (int x = 0; x < 320; ++x) rays.push_back(projection.ray(x + unit(rng), y + unit(rng)));
+    for (int i = 0; i < 20'000; ++i) {
+        const glm::vec3 o(unit(rng) * 2 - 1, unit(rng) * 2 - 1, unit(rng) * 2 - 1);
+        rays.push_back({o, glm::vec3(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f)});
+    }
+    ASSERT_GE(rays.size(), 100'000u);
+    NaiveTracer naive;
+    naive.set_scene(scene);
+    for (const Query query : {Query::closest, Query::any}) {
+        std::vector<Hit> expected(rays.size()), got(rays.size());
+        naive.trace(rays, expected, query);
+        for (const EdacrtParams& p : {EdacrtParams{}, paper_params(), dacrt_params()}) {
+            EdacrtTracer tracer(p);
+            tracer.set_scene(scene);
+            tracer.trace(rays, got, query);
+            std::size_t differences = 0, hits = 0;
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                hits += expected[i].hit();
+                // A soup has no shared edges: closest hits are unique.
+                const bool same = query == Query::any ? got[i].hit() == expected[i].hit()
+                                                      : got[i].prim == expected[i].prim &&
+                                                            got[i].t == expected[i].t;
+                if (!same && ++differences <= 5)
+                    ADD_FAILURE() << "ray " << i << ": prim " << got[i].prim << " t " << got[i].t
+                                  << ", naive prim " << expected[i].prim << " t " << expected[i].t;
+            }
+            EXPECT_EQ(differences, 0u);
+            EXPECT_GT(hits, rays.size() / 4);
+        }
+    }
+}
+
 TEST(EdacrtStats, TestsFewerTrianglesThanNaive) {
     const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
     const RaySets sets = make_ray_sets(scene, 1);

@@ -1,15 +1,20 @@
-// Every method traces a batch with 4 engine threads exactly as with 1. A binary of its own, so
+// Every method traces a batch with 4 engine threads exactly as with 1, and EDACRT's recursion
+// (with its statistics) is the same for 1, 2 and 8. A binary of its own, so
 // that the ThreadSanitizer build of scripts/test compiles and runs just this (and the viewer's
 // worker) to look for races inside the tracers.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "scene/builtin_scenes.h"
+#include "scene/camera.h"
+#include "trace/edacrt_params.h"
 #include "trace/tracer.h"
 
 namespace edacrt {
@@ -70,6 +75,101 @@ TEST_P(TracerThreads, FourThreadsTraceAsOne) {
         EXPECT_EQ(differences, 0u) << (query == Query::any ? "any hit" : "closest hit");
         EXPECT_GT(hits, rays.size() / 10) << "the batch exercises hits";
         EXPECT_LT(hits, rays.size()) << "and misses";
+    }
+}
+
+/// A batch traced with statistics and recordings in an arena of `threads` slots.
+struct Traced {
+    std::vector<Hit> hits;
+    TraceStats totals;
+    TraceDetail detail;
+};
+
+Traced trace_detailed(Tracer& tracer, const std::vector<Ray>& rays, Query query, int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    std::size_t(threads));
+    tbb::task_arena arena(threads);
+    Traced out;
+    out.hits.resize(rays.size());
+    out.detail.max_nodes = 2000;
+    out.detail.follow_ray = std::int64_t(rays.size() / 2);
+    arena.execute([&] {
+        std::vector<Hit> fast(rays.size());
+        out.totals = tracer.trace(rays, fast, query);
+        tracer.trace(rays, out.hits, query, &out.detail);
+        EXPECT_EQ(std::memcmp(fast.data(), out.hits.data(), fast.size() * sizeof(Hit)), 0);
+    });
+    return out;
+}
+
+/// Everything but the timings.
+void expect_same(const Traced& a, const Traced& b) {
+    ASSERT_EQ(a.hits.size(), b.hits.size());
+    EXPECT_EQ(std::memcmp(a.hits.data(), b.hits.data(), a.hits.size() * sizeof(Hit)), 0);
+    EXPECT_EQ(a.totals.ray_box_tests, b.totals.ray_box_tests);
+    EXPECT_EQ(a.totals.ray_triangle_tests, b.totals.ray_triangle_tests);
+    const TraceDetail &x = a.detail, &y = b.detail;
+    EXPECT_EQ(x.root.entered, y.root.entered);
+    ASSERT_EQ(x.levels.size(), y.levels.size());
+    for (std::size_t d = 0; d < x.levels.size(); ++d) {
+        LevelStats l = x.levels[d], m = y.levels[d];
+        for (double* t : {l.phase_seconds, m.phase_seconds}) std::fill_n(t, 4, 0.0);
+        EXPECT_EQ(std::memcmp(&l, &m, sizeof l), 0) << "level " << d;
+    }
+    ASSERT_EQ(x.rays.size(), y.rays.size());
+    EXPECT_EQ(std::memcmp(x.rays.data(), y.rays.data(), x.rays.size() * sizeof(RayStats)), 0);
+    ASSERT_EQ(x.nodes.size(), y.nodes.size());
+    for (std::size_t i = 0; i < x.nodes.size(); ++i) {
+        const NodeRecord &n = x.nodes[i], &o = y.nodes[i];
+        EXPECT_TRUE(n.parent == o.parent && n.children[0] == o.children[0] &&
+                    n.children[1] == o.children[1] && n.depth == o.depth && n.box.lo == o.box.lo &&
+                    n.box.hi == o.box.hi && n.rays == o.rays && n.triangles == o.triangles &&
+                    n.leaf == o.leaf && n.axis == o.axis && n.chosen == o.chosen &&
+                    n.left_first == o.left_first && n.filter_skipped[0] == o.filter_skipped[0] &&
+                    n.filter_skipped[1] == o.filter_skipped[1] &&
+                    n.rays_passed[0] == o.rays_passed[0] && n.rays_passed[1] == o.rays_passed[1] &&
+                    n.alpha_true[0] == o.alpha_true[0] && n.alpha_true[1] == o.alpha_true[1] &&
+                    n.candidates.size() == o.candidates.size())
+            << "node " << i;
+        for (std::size_t c = 0; c < std::min(n.candidates.size(), o.candidates.size()); ++c)
+            EXPECT_EQ(std::memcmp(&n.candidates[c], &o.candidates[c], sizeof(CandidateSplit)), 0)
+                << "node " << i << " candidate " << c;
+    }
+    ASSERT_EQ(x.follow.size(), y.follow.size());
+    for (std::size_t i = 0; i < x.follow.size(); ++i)
+        EXPECT_TRUE(x.follow[i].node == y.follow[i].node &&
+                    x.follow[i].passed[0] == y.follow[i].passed[0] &&
+                    x.follow[i].passed[1] == y.follow[i].passed[1] &&
+                    x.follow[i].hit_here == y.follow[i].hit_here)
+            << "visit " << i;
+}
+
+/// One recursion per batch: hits (any-hit occluders too), counters, per-level and per-ray
+/// statistics and the recorded nodes are the same for 1, 2 and 8 threads. The batch and the
+/// mesh are large enough for every parallel step (partitions and binning of >= 8192 items,
+/// large leaves), and the sphere's shared edges make ties whose winner depends on the order.
+TEST(EdacrtThreads, OneTwoAndEightThreadsGiveTheSameRecursion) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
+    std::vector<Ray> rays;
+    const PinholeProjection projection(frame_box(scene.bounds()), 300, 300);
+    for (int y = 0; y < 300; ++y)
+        for (int x = 0; x < 300; ++x) rays.push_back(projection.ray(x + 0.5f, y + 0.5f));
+    const std::vector<Ray> random = random_rays(20'000);
+    rays.insert(rays.end(), random.begin(), random.end());
+    ASSERT_GE(rays.size(), 100'000u);
+    for (const EdacrtParams& p : {EdacrtParams{}, paper_params(), dacrt_params()}) {
+        const auto tracer = make_tracer(Method::edacrt, p);
+        tracer->set_scene(scene);
+        for (Query query : {Query::closest, Query::any}) {
+            SCOPED_TRACE(query == Query::any ? "any hit" : "closest hit");
+            const Traced one = trace_detailed(*tracer, rays, query, 1);
+            EXPECT_EQ(one.detail.levels.at(0).nodes, 1u);
+            EXPECT_GT(one.detail.nodes.size(), 100u);
+            for (int threads : {2, 8}) {
+                SCOPED_TRACE(std::to_string(threads) + " threads");
+                expect_same(one, trace_detailed(*tracer, rays, query, threads));
+            }
+        }
     }
 }
 

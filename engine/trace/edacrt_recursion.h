@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -138,6 +139,7 @@ class Recursion {
                     return bin_of(split, scene_.centroids[t]) <= split.last_left_bin;
                 });
         }
+        assert(std::size_t(middle - node.tris) == split.count[0]);
         std::uint32_t* child_tris[2] = {node.tris, middle};
         // Near child first (Section 3.3): its hits shorten t_far, which culls rays from the
         // second child's filter. Filtering is skipped where it costs more than it saves

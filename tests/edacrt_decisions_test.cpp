@@ -1,0 +1,352 @@
+// The decisions of one EDACRT node, each on a constructed scene whose answer is known: filter
+// skipping (Section 3.4), traversal order (3.3), the small-node sampling policy, the hit ratios
+// (3.2), binning (3.1) and the leaf rules. The recorded root node (TraceDetail::nodes) shows
+// what the recursion decided.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "scene/builtin_scenes.h"
+#include "trace/edacrt_tracer.h"
+#include "util/error.h"
+
+namespace edacrt {
+namespace {
+
+/// Adds a small triangle with its corners inside [lo, lo + 1]^3.
+void add_small_triangle(Scene& scene, glm::vec3 lo, std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto base = std::uint32_t(scene.positions.size());
+    const glm::vec3 corner = lo + glm::vec3(unit(rng), unit(rng), unit(rng)) * 0.9f;
+    scene.positions.push_back(corner);
+    scene.positions.push_back(corner + glm::vec3(0.1f, 0.0f, 0.0f));
+    scene.positions.push_back(corner + glm::vec3(0.0f, 0.1f, 0.05f));
+    scene.triangles.push_back({base, base + 1, base + 2});
+}
+
+void add_triangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+    const auto base = std::uint32_t(scene.positions.size());
+    scene.positions.insert(scene.positions.end(), {a, b, c});
+    scene.triangles.push_back({base, base + 1, base + 2});
+}
+
+Scene finish(Scene scene) {
+    scene.source = "constructed";
+    scene.materials.resize(1);
+    scene.triangle_materials.assign(scene.triangles.size(), 0);
+    return scene;
+}
+
+/// Two clusters of 40 small triangles, in [0,1]^3 and [10,11] x [0,1]^2: every split of the
+/// root separates them (the bins between them are empty).
+Scene two_clusters() {
+    Scene scene;
+    std::mt19937 rng(3);
+    for (int i = 0; i < 40; ++i) add_small_triangle(scene, {0, 0, 0}, rng);
+    for (int i = 0; i < 40; ++i) add_small_triangle(scene, {10, 0, 0}, rng);
+    return finish(std::move(scene));
+}
+
+/// Rays straight down (-z) from z = 5 through the left cluster's box (`left` of them) and the
+/// right one's: each hits exactly one child box, so alpha_L = left / count exactly.
+std::vector<Ray> down_rays(int left, int count) {
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        const float x = (i < left ? 0.2f : 10.2f) + 0.6f * float(i % 7) / 7.0f;
+        rays.push_back({{x, 0.2f + 0.6f * float(i % 5) / 5.0f, 5.0f}, {0, 0, -1}});
+    }
+    return rays;
+}
+
+/// Rays along x through the clusters' y-z extent, from `x0` in direction `dx`.
+std::vector<Ray> horizontal_rays(float x0, float dx, int count) {
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i)
+        rays.push_back({{x0, 0.2f + 0.6f * float(i % 7) / 7.0f, 0.2f + 0.6f * float(i % 5) / 5.0f},
+                        {dx, 0, 0}});
+    return rays;
+}
+
+/// Parameters that make the root an inner node decided from every one of its rays.
+EdacrtParams exact_root() {
+    EdacrtParams p;
+    p.leaf_rays = 1;
+    p.leaf_tris = 16;
+    p.cost_leaf_max_tris = 0;
+    p.small_nodes = SmallNodes::every_ray;
+    p.sample_threshold = 1000;
+    return p;
+}
+
+/// Traces `rays` and returns the statistics with the root node recorded.
+TraceDetail trace_root(const Scene& scene, const std::vector<Ray>& rays, const EdacrtParams& p) {
+    EdacrtTracer tracer(p);
+    tracer.set_scene(scene);
+    std::vector<Hit> hits(rays.size());
+    TraceDetail detail;
+    detail.max_nodes = 1;
+    tracer.trace(rays, hits, Query::closest, &detail);
+    return detail;
+}
+
+const NodeRecord& root(const TraceDetail& detail) {
+    EXPECT_EQ(detail.nodes.size(), 1u);
+    return detail.nodes.at(0);
+}
+
+TEST(EdacrtDecisions, FilterSkippingFollowsEachRule) {
+    const Scene scene = two_clusters();
+    const std::vector<Ray> rays = down_rays(60, 100);  // alpha_L = 0.6, alpha_R = 0.4
+    struct Case {
+        const char* what;
+        std::function<void(EdacrtParams&)> edit;
+        bool skip_left, skip_right;
+    };
+    const Case cases[] = {
+        // Inner children (40 triangles > leaf_tris): alpha > 1 - C_bv / (2 C_bv) = 1/2.
+        {"paper, inner children", [](EdacrtParams&) {}, true, false},
+        {"paper, inner children, C_bv = 30 (cancels)", [](EdacrtParams& p) { p.cost_filter = 30; },
+         true, false},
+        // Children that will be leaves by count: alpha > 1 - C_bv / (40 C_I) = 0.975...
+        {"paper, leaf children", [](EdacrtParams& p) { p.leaf_tris = 40; }, false, false},
+        // ...or, with C_bv = 30, 0.25.
+        {"paper, leaf children, C_bv = 30",
+         [](EdacrtParams& p) {
+             p.leaf_tris = 40;
+             p.cost_filter = 30;
+         },
+         true, true},
+        // The per-triangle rule prices every child as 40 C_child: 0.975, or 0.25 with C_bv 30.
+        {"triangles", [](EdacrtParams& p) { p.filter_skip = FilterSkip::triangles; }, false, false},
+        {"triangles, C_bv = 30",
+         [](EdacrtParams& p) {
+             p.filter_skip = FilterSkip::triangles;
+             p.cost_filter = 30;
+         },
+         true, true},
+        {"off", [](EdacrtParams& p) { p.filter_skip = FilterSkip::off; }, false, false},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        EdacrtParams p = exact_root();
+        c.edit(p);
+        const TraceDetail detail = trace_root(scene, rays, p);
+        const NodeRecord& node = root(detail);
+        ASSERT_FALSE(node.leaf);
+        const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
+        ASSERT_EQ(chosen.left_triangles, 40u);
+        EXPECT_FLOAT_EQ(chosen.alpha_left, 0.6f);
+        EXPECT_FLOAT_EQ(chosen.alpha_right, 0.4f);
+        EXPECT_EQ(node.filter_skipped[0], c.skip_left);
+        EXPECT_EQ(node.filter_skipped[1], c.skip_right);
+        // A skipped child gets all 100 rays; a filtered one those that hit its box.
+        EXPECT_EQ(node.rays_passed[0], c.skip_left ? 100u : 60u);
+        EXPECT_EQ(node.rays_passed[1], c.skip_right ? 100u : 40u);
+    }
+}
+
+TEST(EdacrtDecisions, TraversalOrderFollowsEachRule) {
+    const Scene scene = two_clusters();
+    struct Case {
+        const char* what;
+        std::vector<Ray> rays;
+        TraversalOrder order;
+        bool left_first;
+    };
+    const Case cases[] = {
+        // From +x the right cluster is entered first; the direction sign agrees.
+        {"from +x, sampled", horizontal_rays(20, -1, 50), TraversalOrder::sampled, false},
+        {"from +x, sign", horizontal_rays(20, -1, 50), TraversalOrder::direction_sign, false},
+        {"from -x, sampled", horizontal_rays(-10, 1, 50), TraversalOrder::sampled, true},
+        // From between the clusters going +x only the right box is hit: sampling sees that, the
+        // sign of the direction does not.
+        {"from the gap, sampled", horizontal_rays(5, 1, 50), TraversalOrder::sampled, false},
+        {"from the gap, sign", horizontal_rays(5, 1, 50), TraversalOrder::direction_sign, true},
+        {"from +x, left-first", horizontal_rays(20, -1, 50), TraversalOrder::left_first, true},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        EdacrtParams p = exact_root();
+        p.order = c.order;
+        p.filter_skip = FilterSkip::off;
+        const NodeRecord& node = root(trace_root(scene, c.rays, p));
+        ASSERT_FALSE(node.leaf);
+        EXPECT_EQ(node.left_first, c.left_first);
+    }
+}
+
+TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
+    const Scene scene = two_clusters();
+    const std::vector<Ray> rays = down_rays(60, 100);
+    const std::uint64_t tests_per_ray = 2 * (EdacrtParams{}.bins - 1);
+    struct Case {
+        SmallNodes policy;
+        std::uint32_t threshold;
+        std::uint64_t sampled;
+    };
+    const Case cases[] = {
+        {SmallNodes::every_ray, 1000, 100},
+        {SmallNodes::capped, 1000, 30},       // at most sample_count
+        {SmallNodes::surface_area, 1000, 0},  // no sampling at all
+        // Above the threshold every policy draws sample_count rays.
+        {SmallNodes::every_ray, 50, 30},
+        {SmallNodes::capped, 50, 30},
+        {SmallNodes::surface_area, 50, 30},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(int(c.policy)) + " threshold " + std::to_string(c.threshold));
+        EdacrtParams p = exact_root();
+        p.small_nodes = c.policy;
+        p.sample_threshold = c.threshold;
+        p.sample_count = 30;
+        const TraceDetail detail = trace_root(scene, rays, p);
+        ASSERT_FALSE(detail.levels.empty());
+        EXPECT_EQ(detail.levels[0].sampled_rays, c.sampled);
+        EXPECT_EQ(detail.levels[0].sample_box_tests, c.sampled * tests_per_ray);
+        const NodeRecord& node = root(detail);
+        const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
+        if (c.sampled == 0) {  // surface-area ratios
+            EXPECT_FLOAT_EQ(chosen.alpha_left,
+                            chosen.left.surface_area() / node.box.surface_area());
+        } else if (c.sampled == 100) {  // every ray: the exact ratio
+            EXPECT_FLOAT_EQ(chosen.alpha_left, 0.6f);
+        }
+    }
+}
+
+TEST(EdacrtDecisions, SampledAlphaIsTheTrueAlphaWhenEveryRayIsSampled) {
+    // At the root of the clusters...
+    const NodeRecord& node = root(trace_root(two_clusters(), down_rays(37, 90), exact_root()));
+    const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
+    EXPECT_FLOAT_EQ(chosen.alpha_left, node.alpha_true[0]);
+    EXPECT_FLOAT_EQ(chosen.alpha_right, node.alpha_true[1]);
+
+    // ...and in every node of a full recursion, where earlier hits have shortened the rays.
+    const Scene soup = make_builtin_scene("builtin:soup:count=3000,seed=4,size=0.3");
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coord(-1.2f, 1.2f);
+    std::vector<Ray> rays(20'000);
+    for (Ray& ray : rays) ray = {{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), 1}};
+    EdacrtParams p;
+    p.small_nodes = SmallNodes::every_ray;
+    p.sample_threshold = 1'000'000;  // every node is small
+    EdacrtTracer tracer(p);
+    tracer.set_scene(soup);
+    std::vector<Hit> hits(rays.size());
+    TraceDetail detail;
+    tracer.trace(rays, hits, Query::closest, &detail);
+    std::uint64_t children = 0;
+    for (const LevelStats& level : detail.levels) {
+        children += level.alpha_children;
+        EXPECT_NEAR(level.alpha_error_sum, 0.0, 1e-6 * double(level.alpha_children));
+    }
+    EXPECT_GT(children, 100u);
+}
+
+TEST(EdacrtDecisions, LeavesByCountAndByCost) {
+    const Scene scene = two_clusters();
+    const std::vector<Ray> down = down_rays(60, 100);
+    const auto leaf = [&](const std::vector<Ray>& rays, auto edit) {
+        EdacrtParams p = exact_root();
+        edit(p);
+        return root(trace_root(scene, rays, p)).leaf;
+    };
+    EXPECT_FALSE(leaf(down, [](EdacrtParams&) {}));
+    EXPECT_TRUE(leaf(down, [](EdacrtParams& p) { p.leaf_rays = 100; }));  // rays <= leaf_rays
+    EXPECT_FALSE(leaf(down, [](EdacrtParams& p) { p.leaf_rays = 99; }));
+    EXPECT_TRUE(leaf(down, [](EdacrtParams& p) { p.leaf_tris = 80; }));  // tris <= leaf_tris
+    EXPECT_FALSE(leaf(down, [](EdacrtParams& p) { p.leaf_tris = 79; }));
+    // Rays along x cross both clusters: alpha_L = alpha_R = 1, so a split costs C_T + 80 C_I,
+    // more than the leaf's 80 C_I. Only the cost-based leaf (not in the paper) stops there.
+    const std::vector<Ray> through = horizontal_rays(-10, 1, 50);
+    EXPECT_TRUE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 80; }));
+    EXPECT_FALSE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 79; }));
+    EXPECT_FALSE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 0; }));
+}
+
+TEST(EdacrtDecisions, BinsSpanTheNodeBoxOrTheCentroids) {
+    // Ten small triangles with centroids near x = 0.5 .. 9.5 and one long one to x = 80.
+    Scene scene;
+    for (int i = 0; i < 10; ++i)
+        add_triangle(scene, {float(i) + 0.4f, 0, 0}, {float(i) + 0.6f, 0, 0},
+                     {float(i) + 0.5f, 0.2f, 0});
+    add_triangle(scene, {0, 0, 0.5f}, {80, 0, 0.5f}, {0.8f, 0.3f, 0.5f});
+    scene = finish(std::move(scene));
+    std::vector<Ray> rays = horizontal_rays(-10, 1, 40);
+    EdacrtParams p = exact_root();
+    p.leaf_tris = 1;
+    p.binning = Binning::node_box;  // bins 10 wide: the ten small ones share bin 0
+    EXPECT_EQ(root(trace_root(scene, rays, p)).candidates.at(0).left_triangles, 10u);
+    p.binning = Binning::centroids;  // bins over [0.5, 26.9], 3.3 wide: four in bin 0
+    EXPECT_EQ(root(trace_root(scene, rays, p)).candidates.at(0).left_triangles, 4u);
+
+    // Centroids that all fall into one bin of the node box: binning falls back to their range.
+    Scene wide;
+    add_triangle(wide, {-100, 0, 0}, {100, 0, 0}, {0, 1, 0});
+    for (int i = 0; i < 20; ++i)
+        add_triangle(wide, {0.01f * float(i), 0, 0}, {0.01f * float(i) + 0.005f, 0, 0},
+                     {0.01f * float(i), 0.01f, 0});
+    wide = finish(std::move(wide));
+    std::vector<Ray> down;
+    for (int i = 0; i < 40; ++i) down.push_back({{0.005f * float(i), 0.001f, 1}, {0, 0, -1}});
+    p.binning = Binning::node_box;
+    EXPECT_FALSE(root(trace_root(wide, down, p)).leaf);
+}
+
+TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
+    const EdacrtParams paper = preset_params("paper");
+    EXPECT_EQ(paper, paper_params());
+    EXPECT_EQ(paper.binning, Binning::node_box);
+    EXPECT_EQ(paper.filter_skip, FilterSkip::paper);
+    EXPECT_EQ(paper.small_nodes, SmallNodes::every_ray);
+    EXPECT_EQ(paper.cost_leaf_max_tris, 0u);
+    EXPECT_EQ(paper.sample_threshold, 1000u);
+    EXPECT_EQ(paper.sample_count, 100u);
+    const EdacrtParams dacrt = preset_params("dacrt");
+    EXPECT_EQ(dacrt.hit_ratio, HitRatio::surface_area);
+    EXPECT_EQ(dacrt.order, TraversalOrder::direction_sign);
+    EXPECT_EQ(dacrt.filter_skip, FilterSkip::off);
+    EXPECT_EQ(preset_params("default"), EdacrtParams{});
+    EXPECT_THROW(preset_params("fast"), InputError);
+}
+
+TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
+    EdacrtParams p;
+    EXPECT_EQ(edacrt_param_info().size(), 16u);
+    for (const ParamInfo& info : edacrt_param_info()) {
+        SCOPED_TRACE(std::string(info.key));
+        EXPECT_EQ(find_param(info.key), &info);
+        EXPECT_FALSE(info.help.empty());
+        // Its own text reads back to the same value.
+        EdacrtParams copy = p;
+        set_param(copy, info, param_text(p, info));
+        EXPECT_EQ(copy, p);
+        EXPECT_THROW(set_param(copy, info, "nonsense"), InputError);
+        EXPECT_THROW(set_param(copy, info, ""), InputError);
+        if (info.kind == ParamInfo::Kind::choice) {
+            for (std::string_view name : info.choices) {
+                set_param(copy, info, name);
+                EXPECT_EQ(param_text(copy, info), name);
+                validate(copy);
+            }
+        } else {
+            EXPECT_THROW(set_param(copy, info, "nan"), InputError);
+            EXPECT_THROW(set_param(copy, info, "inf"), InputError);
+            EXPECT_THROW(set_param(copy, info, std::to_string(info.max * 2 + 1)), InputError);
+            EXPECT_THROW(set_param(copy, info, std::to_string(info.min - 1)), InputError);
+            if (info.kind == ParamInfo::Kind::integer) {
+                EXPECT_THROW(set_param(copy, info, "2.5"), InputError);
+            }
+        }
+    }
+    EXPECT_EQ(find_param("no-such-parameter"), nullptr);
+    // An enum value out of range (a corrupted struct) is caught by validate().
+    EdacrtParams bad;
+    bad.order = TraversalOrder(7);
+    EXPECT_THROW(validate(bad), InputError);
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -141,8 +141,18 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         {"render --scene builtin:cornell --width 0 --out " + path("x.png"), "--width"},
         {"render --scene builtin:cornell --fov 200 --out " + path("x.png"), "field of view"},
         {"render --scene builtin:cornell --eye 1,2 --out " + path("x.png"), "--eye"},
-        {"render --scene builtin:cornell --bins 1 --out " + path("x.png"), "bins: '1' is outside [2, 256]"},
+        {"render --scene builtin:cornell --bins 1 --out " + path("x.png"),
+         "bins: '1' is outside [2, 256]"},
         {"render --scene builtin:cornell --c-i -1 --out " + path("x.png"), "c-i: '-1' is outside"},
+        {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
+             " --filter-skip sometimes",
+         "filter-skip: 'sometimes' is not one of off|paper|triangles"},
+        {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
+             " --preset fast",
+         "unknown preset 'fast' (default|paper|dacrt)"},
+        {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
+             " --leaf-rays 2.5",
+         "leaf-rays: '2.5' is not an integer"},
         {"frobnicate", "subcommand"},
     };
     for (const auto& c : cases) {
@@ -150,6 +160,46 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         EXPECT_NE(result.exit_code, 0) << c.args;
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
                                                                     << result.output;
+    }
+}
+
+/// One recursion per batch: the statistics JSON has one node at level 0 and, apart from its
+/// timings, is the same for --threads 1 and --threads 2; the hit files are identical.
+TEST_F(TraceCli, StatisticsAreTheSameForAnyThreadCount) {
+    ASSERT_EQ(test::run_cli("camera-rays --scene builtin:sphere:subdiv=5 --width 400 --height 300 "
+                            "--out " +
+                            path("rays.bin"))
+                  .exit_code,
+              0);
+    const auto strip = [](nlohmann::json j, auto& self) -> nlohmann::json {
+        if (j.is_object()) {
+            nlohmann::json out = nlohmann::json::object();
+            for (auto& [key, value] : j.items())
+                if (key.find("seconds") == std::string::npos && key != "mrays_per_second")
+                    out[key] = self(value, self);
+            return out;
+        }
+        if (j.is_array())
+            for (auto& value : j) value = self(value, self);
+        return j;
+    };
+    for (const std::string preset : {"default", "paper", "dacrt"}) {
+        nlohmann::json stats[2];
+        for (const int threads : {1, 2}) {
+            const std::string n = std::to_string(threads);
+            const auto result = test::run_cli(
+                "trace --scene builtin:sphere:subdiv=5 --rays " + path("rays.bin") + " --out " +
+                path("hits" + n + ".bin") + " --stats " + path("stats" + n + ".json") +
+                " --preset " + preset + " --threads " + n);
+            ASSERT_EQ(result.exit_code, 0) << result.output;
+            stats[threads - 1] = nlohmann::json::parse(std::ifstream(path("stats" + n + ".json")));
+        }
+        EXPECT_EQ(stats[0]["detail"]["levels"][0]["nodes"], 1) << preset;
+        EXPECT_EQ(stats[0]["detail"]["root"]["rays"], 120000) << preset;
+        EXPECT_EQ(strip(stats[0], strip), strip(stats[1], strip)) << preset;
+        EXPECT_EQ(test::run_command("cmp " + path("hits1.bin") + " " + path("hits2.bin")).exit_code,
+                  0)
+            << preset;
     }
 }
 

@@ -46,6 +46,13 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
     }
     ImGui::EndTable();
     ImGui::TextDisabled("cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row");
+    // How good the estimate was: the share of all the node's rays that hit each chosen child.
+    if (node.chosen >= 0)
+        ImGui::Text("true a_L %.3f, a_R %.3f (all %u rays); %s child first; L %s, R %s",
+                    node.alpha_true[0], node.alpha_true[1], node.rays,
+                    node.left_first ? "left" : "right",
+                    node.filter_skipped[0] ? "passed unfiltered" : "filtered",
+                    node.filter_skipped[1] ? "passed unfiltered" : "filtered");
 }
 
 }  // namespace

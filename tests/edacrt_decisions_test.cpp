@@ -171,7 +171,8 @@ TEST(EdacrtDecisions, TraversalOrderFollowsEachRule) {
         EdacrtParams p = exact_root();
         p.order = c.order;
         p.filter_skip = FilterSkip::off;
-        const NodeRecord& node = root(trace_root(scene, c.rays, p));
+        const TraceDetail detail = trace_root(scene, c.rays, p);
+        const NodeRecord& node = root(detail);
         ASSERT_FALSE(node.leaf);
         EXPECT_EQ(node.left_first, c.left_first);
     }
@@ -218,7 +219,8 @@ TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
 
 TEST(EdacrtDecisions, SampledAlphaIsTheTrueAlphaWhenEveryRayIsSampled) {
     // At the root of the clusters...
-    const NodeRecord& node = root(trace_root(two_clusters(), down_rays(37, 90), exact_root()));
+    const TraceDetail clusters = trace_root(two_clusters(), down_rays(37, 90), exact_root());
+    const NodeRecord& node = root(clusters);
     const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
     EXPECT_FLOAT_EQ(chosen.alpha_left, node.alpha_true[0]);
     EXPECT_FLOAT_EQ(chosen.alpha_right, node.alpha_true[1]);

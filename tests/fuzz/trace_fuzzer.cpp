@@ -173,8 +173,7 @@ struct Candidate {
 
 /// Parameters that make the divide-and-conquer methods recurse even on a handful of rays and
 /// triangles (the defaults brute-force anything this small).
-EdacrtParams small_leaves() {
-    EdacrtParams p;
+EdacrtParams small_leaves(EdacrtParams p = {}) {
     p.leaf_rays = p.leaf_tris = p.cost_leaf_max_tris = 1;
     p.sample_threshold = 4;
     p.sample_count = 2;
@@ -187,6 +186,13 @@ std::vector<Candidate>& candidates() {
         out.push_back({"edacrt", make_tracer(Method::edacrt)});
         out.push_back({"edacrt small leaves", make_tracer(Method::edacrt, small_leaves())});
         out.push_back({"dacrt small leaves", make_tracer(Method::dacrt, small_leaves())});
+        out.push_back({"edacrt paper small leaves",
+                       make_tracer(Method::edacrt, small_leaves(paper_params()))});
+        EdacrtParams other;  // the options neither preset takes
+        other.order = TraversalOrder::left_first;
+        other.filter_skip = FilterSkip::triangles;
+        other.small_nodes = SmallNodes::surface_area;
+        out.push_back({"edacrt other switches", make_tracer(Method::edacrt, small_leaves(other))});
         out.push_back({"bvh", make_tracer(Method::bvh)});
 #ifdef EDACRT_HAS_EMBREE
         for (const EmbreeMode mode : {EmbreeMode::single, EmbreeMode::packet8})

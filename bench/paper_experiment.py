@@ -17,6 +17,7 @@ import json
 import math
 import os
 import re
+import shlex
 import statistics
 import subprocess
 import sys
@@ -134,9 +135,26 @@ def measure_set(args, scene, rays, count, variants, stats_dir):
     return results
 
 
-def measure(args):
-    results = {"scenes": {}, "skipped": [], "started": time.time(),
-               "load_before": os.getloadavg()[0]}
+def measure(args, previous):
+    """Measures every scene, or only the --scene ones, keeping the others from `previous`."""
+    settings = {"size": args.size, "repeats": args.repeats, "threads": args.threads,
+                "ablation_sets": args.ablation_sets}
+    results = {**settings, "scenes": {}, "runs": [], "skipped": []}
+    if args.scene and previous:
+        if any(previous[k] != v for k, v in settings.items()):
+            sys.exit("paper_experiment: --scene keeps the other scenes of results.json, which "
+                     f"were measured with other settings ({ {k: previous[k] for k in settings} })")
+        results["scenes"] = {n: s for n, s in previous["scenes"].items() if n not in args.scene}
+        runs = [dict(r, scenes=[n for n in r["scenes"] if n not in args.scene])
+                for r in previous["runs"]]
+        results["runs"] = [r for r in runs if r["scenes"]]
+        results["skipped"] = [s for s in previous["skipped"] if s.split()[0] not in args.scene]
+    argv = sys.argv[1:]
+    if "--note" in argv:  # the note is shown apart
+        del argv[argv.index("--note"):argv.index("--note") + 2]
+    argv = [a for a in argv if not a.startswith("--note=")]
+    run = {"command": "bench/paper_experiment.py " + shlex.join(argv), "note": args.note,
+           "started": time.time(), "load_before": os.getloadavg()[0], "scenes": []}
     for name, file, camera_flags in SCENES:
         if args.scene and name not in args.scene:
             continue
@@ -147,6 +165,7 @@ def measure(args):
             continue
         sets = make_rays(args, name, scene, camera_flags)
         results["scenes"][name] = {}
+        run["scenes"].append(name)
         for ray_set, (path, count) in sets.items():
             if count == 0:
                 results["skipped"].append(f"{name} {ray_set} (no rays)")
@@ -160,8 +179,9 @@ def measure(args):
             d, e = measured["dacrt"]["median"], measured["edacrt"]["median"]
             print(f"{name} {ray_set} ({count:,} rays): dacrt {1e3 * d:.0f} ms, edacrt "
                   f"{1e3 * e:.0f} ms, speed-up {d / e:.2f}", flush=True)
-    results["seconds"] = time.time() - results["started"]
-    results["load_after"] = os.getloadavg()[0]
+    run.update(seconds=time.time() - run["started"], load_after=os.getloadavg()[0])
+    results["runs"].append(run)
+    results["scenes"] = {n: results["scenes"][n] for n, _, _ in SCENES if n in results["scenes"]}
     return results
 
 
@@ -174,7 +194,7 @@ def geomean(values):
 
 
 def plot(results, path):
-    fig, ax = plt.subplots(figsize=(6, 4.2), dpi=110)
+    fig, ax = plt.subplots(figsize=(8.5, 4.2), dpi=110)
     for i, (name, sets) in enumerate(results["scenes"].items()):
         cells = [(SPP[s], sets[s]) for s in SPP if s in sets]
         for key, style in (("edacrt", "-o"), ("paper", "--s")):
@@ -188,7 +208,7 @@ def plot(results, path):
     ax.set_ylabel("speed-up over DACRT (DACRT time / time)")
     ax.set_title(f"EDACRT against DACRT, camera rays at {results['size']}x{results['size']}")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
@@ -250,6 +270,20 @@ def counter_table(results):
     return lines
 
 
+def trend(values):
+    """How a speed-up changes over 1, 4, 16 spp, allowing 3% noise per step."""
+    first, middle, last = values
+    rising = middle >= 0.97 * first and last >= 0.97 * middle
+    falling = middle <= 1.03 * first and last <= 1.03 * middle
+    if rising and last > 1.05 * first:
+        return "grows"
+    if falling and last < 0.95 * first:
+        return "falls"
+    if (rising or falling) and abs(last / first - 1) <= 0.05:
+        return "flat"
+    return "up and down"
+
+
 def comparison(results, ablation_cells):
     """The paper's claim against these numbers, in paragraphs computed from them."""
     scenes = results["scenes"]
@@ -268,12 +302,19 @@ def comparison(results, ablation_cells):
     for name, sets in scenes.items():
         values = [speedup(sets[s], "edacrt") for s in SPP if s in sets]
         if len(values) == 3:
-            grows = values[2] > 1.05 * values[0] and values[1] >= 0.97 * values[0]
             trends.append(f"{name} {' -> '.join(f'{v:.2f}' for v in values)} "
-                          f"({'grows' if grows else 'does not grow'})")
+                          f"({trend(values)})")
+    b, bd = best[2]["variants"]["edacrt"], best[2]["variants"]["dacrt"]
+    out[-1] += (f" There the counters show triangle tests per ray "
+                f"{bd['tri_per_ray']:.0f} -> {b['tri_per_ray']:.0f}, box tests per ray "
+                f"{bd['box_per_ray']:.0f} -> {b['box_per_ray']:.0f}, first child right "
+                f"{100 * bd['detail']['order_first']:.0f}% -> "
+                f"{100 * b['detail']['order_first']:.0f}%.")
     if trends:
+        growing = sum(t.endswith("(grows)") for t in trends)
         out[-1] += (" On camera rays at 1, 4 and 16 samples per pixel the speed-up goes: " +
-                    "; ".join(trends) + ".")
+                    "; ".join(trends) + f". The growth with rays per pixel reproduces on "
+                    f"{growing} of {len(trends)} scenes.")
 
     def counters(group):
         """Medians over `group`: EDACRT's sampling box tests per ray, its share of EDACRT's box
@@ -284,7 +325,7 @@ def comparison(results, ablation_cells):
         share = statistics.median(x["detail"]["sample_box_per_ray"] / x["box_per_ray"] for x in e)
         tri = statistics.median(a["tri_per_ray"] / b["tri_per_ray"] - 1 for a, b in zip(e, d))
         return (f"{sampling:.0f} sampling box tests per ray ({100 * share:.0f}% of its box "
-                f"tests) and {100 * tri:+.0f}% triangle tests per ray")
+                f"tests) and {round(100 * tri):+d}% triangle tests per ray")
 
     slower = [x for x in cells if speedup(x[2], "edacrt") < 0.97]
     faster = [x for x in cells if speedup(x[2], "edacrt") > 1.03]
@@ -335,15 +376,17 @@ def markdown(args, results, figure):
     spreads = [(max(v["times"]) - min(v["times"])) / v["median"]
                for sets in results["scenes"].values() for c in sets.values()
                for v in c["variants"].values() if len(v["times"]) > 1]
-    date = time.strftime("%Y-%m-%d", time.localtime(results["started"]))
+    runs = "; ".join(
+        f"`{r['command']}` ({time.strftime('%Y-%m-%d', time.localtime(r['started']))}, "
+        f"{r['seconds'] / 60:.0f} min, load average {r['load_before']:.1f} at the start and "
+        f"{r['load_after']:.1f} at the end): {', '.join(r['scenes'])}"
+        + (f" ({r['note']})" if r.get("note") else "") for r in results["runs"])
     lines = [
         HEADING,
         "",
-        f"Generated by `{results['command']}` ({date}, "
-        f"{results['seconds'] / 60:.0f} min). Machine: {cpu}, {os.cpu_count()} hardware threads, "
-        f"`--threads {results['threads']}`; load average {results['load_before']:.1f} at the "
-        f"start and {results['load_after']:.1f} at the end (the machine is shared, read ratios "
-        "of one run, not absolute times)"
+        f"Generated by {runs}. Machine: {cpu}, {os.cpu_count()} hardware threads, "
+        f"`--threads {results['threads']}` (the machine is shared: read ratios of one run, not "
+        "absolute times)"
         + (f"; the median spread (max - min) / median of a variant's runs is "
            f"{100 * statistics.median(spreads):.0f}%." if spreads else ".")
         + (f" Skipped: {'; '.join(results['skipped'])}." if results["skipped"] else ""),
@@ -428,7 +471,10 @@ def main():
     parser.add_argument("--size", type=int, default=512, help="image width and height")
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per variant")
     parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--scene", action="append", help="only these scenes (repeatable)")
+    parser.add_argument("--scene", action="append",
+                        help="measure only this scene (repeatable); the others are kept from "
+                             "results.json")
+    parser.add_argument("--note", default="", help="a remark on this run, for the section")
     parser.add_argument("--ablation-sets", default="camera_4spp,diffuse",
                         help="ray sets the ablations run on (comma-separated; 'all')")
     parser.add_argument("--quick", action="store_true", help="64x64, one run: a smoke test")
@@ -455,10 +501,7 @@ def main():
             if not (args.build / tool).exists():
                 sys.exit(f"paper_experiment: {args.build / tool} not found; build it with "
                          f"nice cmake --build build --target edacrt edacrt_paper_rays")
-        results = measure(args)
-        results.update(command="bench/paper_experiment.py " + " ".join(sys.argv[1:]),
-                       size=args.size, repeats=args.repeats, threads=args.threads,
-                       ablation_sets=args.ablation_sets)
+        results = measure(args, json.loads(cache.read_text()) if cache.exists() else None)
         cache.write_text(json.dumps(results, indent=1))
 
     figures = args.out if args.quick else ROOT / "bench" / "figures"

@@ -6,7 +6,7 @@ DACRT or remove one from EDACRT. Writes out/paper/paper_experiment.md, out/paper
 and bench/figures/paper_speedup.png; --readme puts the section into bench/README.md.
 
 Run from the repository root after building edacrt and edacrt_paper_rays:
-  bench/paper_experiment.py --readme          (about 35 minutes on 2 cores)
+  bench/paper_experiment.py --readme          (about 40 minutes on 2 cores)
   bench/paper_experiment.py --quick           (64x64, one run: checks that it works)
   bench/paper_experiment.py --from-results --readme   (re-make the section from results.json)
 Time is the trace_seconds `edacrt trace` prints (one batch; file I/O and scene set-up are

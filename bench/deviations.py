@@ -8,8 +8,8 @@ paper's, and the paper preset and DACRT for scale.
 Ray sets: 1024x1024 pixel-centre camera rays (`edacrt camera-rays`) and 200,000 random rays
 from inside the scene's box (uniform origins and directions), on the bunny and Sponza from
 $EDACRT_SCENES (default ../shared/scenes). Every variant traces the same ray file with `edacrt
-trace`; times are its trace_seconds (loading excluded), the variants interleaved run by run,
-medians of --runs; counters come from one --stats run of each.
+trace`; times are its trace_seconds (loading excluded), the variants interleaved run by run in
+a rotating order, medians of --runs; counters come from one --stats run of each.
 """
 import argparse
 import json
@@ -33,8 +33,10 @@ VARIANTS = [
      "nodes of <= 1000 rays sample every ray"),
     ("small nodes: surface area", ["--small-nodes", "surface-area"],
      "(not the paper) area ratios in nodes of <= 1000 rays"),
-    ("binning: node box", ["--binning", "node-box"], "bins across V, not the centroids"),
-    ("no cost leaf", ["--cost-leaf-max-tris", "0"], "leaves by count only"),
+    ("binning: centroids", ["--binning", "centroids"],
+     "(not the paper) bins across the centroids' range"),
+    ("cost leaf <= 64 tris", ["--cost-leaf-max-tris", "64"],
+     "(not the paper) leaves by cost in small nodes"),
     ("filter skip: triangles", ["--filter-skip", "triangles"],
      "(not the paper) N C_child at any depth"),
     ("filter skip: off", ["--filter-skip", "off"], "always filter"),
@@ -72,7 +74,8 @@ def measure(build, out, scene, rays, runs, threads):
     times = {name: [] for name, _, _ in VARIANTS}
     counters = {}
     for run in range(runs):
-        for name, flags, _ in VARIANTS:
+        # Rotated every run, so that no variant always runs first (or right after another).
+        for name, flags, _ in VARIANTS[run % len(VARIANTS):] + VARIANTS[:run % len(VARIANTS)]:
             stats = out / "stats.json"
             extra = ["--stats", stats] if run == 0 else []
             text = edacrt(build, "trace", "--scene", scene, "--rays", rays, "--out",
@@ -99,7 +102,8 @@ def markdown(results, args, seconds):
         f"({time.strftime('%Y-%m-%d')}, {os.cpu_count()} hardware threads, {seconds:.0f} s). "
         "Each row puts one of our defaults back to the paper's choice (or, marked, to another "
         "option); *time* is relative to the defaults on the same ray set, medians of "
-        f"{args.runs} interleaved runs of `edacrt trace`. Box tests include the sampling's.",
+        f"{args.runs} interleaved runs of `edacrt trace` (the order rotated every run). Box "
+        "tests include the sampling's.",
         "",
     ]
     for set_name, (medians, counters) in results.items():

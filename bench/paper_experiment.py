@@ -404,7 +404,7 @@ def markdown(args, results, figure):
         "DACRT is `--method dacrt` (surface-area hit ratios, direction-sign order, always "
         "filtering) on the same recursion, binning and leaf rules as EDACRT's defaults; "
         "EDACRT (defaults) is `--method edacrt`; the paper preset is `--preset paper` "
-        "(node-box binning, every ray sampled in small nodes, leaves by count only).",
+        "(every ray sampled in nodes of at most 1000 rays, the defaults otherwise).",
         "",
         f"![speed-up against samples per pixel](figures/{figure.name})",
         "",

@@ -140,6 +140,11 @@ def seed_comparison(build, out, args):
     return rows
 
 
+# Headings of the sections that other scripts append to bench/README.md, after this report's.
+OTHER_SECTIONS = ["## EDACRT against DACRT (the paper's experiment)",
+                  "## Deviations from the paper, measured"]
+
+
 def markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started):
     lines = [
         "# Speed against error",
@@ -263,7 +268,11 @@ def main():
     seed_rows = section("seed", lambda: seed_comparison(args.build, args.out, args))
 
     report = markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started)
-    (ROOT / "bench" / "README.md").write_text(report)
+    readme = ROOT / "bench" / "README.md"
+    # Sections other scripts write (bench/deviations.py, bench/paper_experiment.py) are kept.
+    old = readme.read_text() if readme.exists() else ""
+    kept = [old.find(heading) for heading in OTHER_SECTIONS if heading in old]
+    readme.write_text(report.rstrip() + "\n" + ("\n" + old[min(kept):] if kept else ""))
     print(f"wrote bench/README.md and {len(figures['convergence']) + 1} figures "
           f"in {time.time() - started:.0f} s")
 

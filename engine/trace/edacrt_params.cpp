@@ -35,7 +35,7 @@ constexpr std::array<std::string_view, 2> kHitRatios = {"sampled", "surface-area
 constexpr std::array<std::string_view, 3> kOrders = {"sampled", "direction-sign", "left-first"};
 constexpr std::array<std::string_view, 3> kFilterSkips = {"off", "paper", "triangles"};
 constexpr std::array<std::string_view, 3> kSmallNodes = {"every-ray", "capped", "surface-area"};
-constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};
+constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};  // enum order
 constexpr std::array<std::string_view, 3> kPresets = {"default", "paper", "dacrt"};
 
 constexpr double kCount = 1e9;                               // upper bound of the count parameters
@@ -128,8 +128,8 @@ const std::array<ParamInfo, 16> kParams = {
     integer<&EdacrtParams::cost_leaf_max_tris>(
         "cost-leaf-max-tris", "cost-leaf max tris",
         "Not in the paper: nodes with at most this many triangles become leaves when no split "
-        "costs less than C_I N per ray. The cost prices both children as leaves, so in large "
-        "nodes it would stop the recursion early. 0 turns it off.",
+        "costs less than C_I N per ray (the cost prices both children as leaves, so in large "
+        "nodes it would stop the recursion early). 0, the default, turns it off.",
         0, kCount),
     real<&EdacrtParams::cost_traversal>(
         "c-t", "C_T", "C_T: cost per ray of a split, in ray-triangle tests (Section 3.2).", 16.0),

@@ -54,7 +54,7 @@ struct EdacrtParams {
     SmallNodes small_nodes = SmallNodes::capped;
     std::uint32_t leaf_rays = 16;
     std::uint32_t leaf_tris = 16;
-    std::uint32_t cost_leaf_max_tris = 64;  // 0: no leaves by cost
+    std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)
     float cost_traversal = 2.0f;            // C_T
     float cost_intersect = 1.0f;            // C_I
     float cost_filter = 1.0f;               // C_bv
@@ -62,14 +62,13 @@ struct EdacrtParams {
     HitRatio hit_ratio = HitRatio::sampled;
     TraversalOrder order = TraversalOrder::sampled;
     FilterSkip filter_skip = FilterSkip::paper;
-    Binning binning = Binning::centroids;
+    Binning binning = Binning::node_box;
     std::uint32_t seed = 1;  // of the per-node ray sampling
 
     bool operator==(const EdacrtParams&) const = default;
 };
 
-/// The paper's choices: node-box binning, the paper's filter skipping, leaves by count only,
-/// every ray sampled in small nodes.
+/// The paper's choices: the defaults, but every ray sampled in small nodes.
 EdacrtParams paper_params();
 
 /// DACRT (Afra 2012) on the same recursion: surface-area ratios, direction-sign order, always

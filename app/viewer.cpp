@@ -84,9 +84,11 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
 // Bytes per pixel the viewer holds besides the renderer: up to three published frames (the
 // worker's newest, the one shown, the one shown before), the first pass's per-ray statistics
 // twice (captured and published), the driver's float texture (RGBA) and the heat map's values
-// and texture.
-constexpr std::uint64_t kViewerBytesPerPixel =
-    3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) + 4 * sizeof(float) + 2 * sizeof(float);
+// and texture; plus the statistics batch, all of a pass's camera rays traced at once
+// (trace_bytes_per_ray(true): rays, hits, the tracer's buffers, the observer's).
+const std::uint64_t kViewerBytesPerPixel = 3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) +
+                                           4 * sizeof(float) + 2 * sizeof(float) +
+                                           trace_bytes_per_ray(true);
 
 /// A new resolution (slider or window size) is taken only if the render fits in memory.
 /// Otherwise the error shows (and is printed once) and the previous resolution stays, the

@@ -178,6 +178,35 @@ TEST(EdacrtDecisions, TraversalOrderFollowsEachRule) {
     }
 }
 
+TEST(EdacrtDecisions, OrderQualityAndCullingCountWhatTheOrderBought) {
+    // The left cluster and, at x = 10.5, a wall of 40 triangles that blocks every ray coming
+    // from +x before it reaches the left cluster's box.
+    Scene scene;
+    std::mt19937 rng(3);
+    for (int i = 0; i < 40; ++i) add_small_triangle(scene, {0, 0, 0}, rng);
+    for (int i = 0; i < 20; ++i) {
+        add_triangle(scene, {10.5f, -1, -1}, {10.5f, 2, -1}, {10.5f, 2, 2});
+        add_triangle(scene, {10.5f, -1, -1}, {10.5f, 2, 2}, {10.5f, -1, 2});
+    }
+    scene = finish(std::move(scene));
+    const std::vector<Ray> rays = horizontal_rays(20, -1, 50);
+    for (const TraversalOrder order : {TraversalOrder::sampled, TraversalOrder::left_first}) {
+        SCOPED_TRACE(order == TraversalOrder::sampled ? "sampled: the wall first" : "left first");
+        EdacrtParams p = exact_root();
+        p.order = order;
+        p.filter_skip = FilterSkip::off;
+        const TraceDetail detail = trace_root(scene, rays, p);
+        ASSERT_FALSE(root(detail).leaf);
+        const LevelStats& level = detail.levels.at(0);
+        // Every ray hits both children's boxes and finds its hit in the wall.
+        const bool wall_first = order == TraversalOrder::sampled;
+        EXPECT_EQ(level.order_hits, wall_first ? 50u : 0u);
+        EXPECT_EQ(level.order_misses, wall_first ? 0u : 50u);
+        // Visiting the wall first culls all of them from the left cluster's filter.
+        EXPECT_EQ(level.culled_by_distance, wall_first ? 50u : 0u);
+    }
+}
+
 TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
     const Scene scene = two_clusters();
     const std::vector<Ray> rays = down_rays(60, 100);

@@ -16,12 +16,14 @@ bool hits_box(const RayBatch& batch, std::uint32_t r, const Aabb& box, float t_f
 }  // namespace
 
 RecordingObserver::RecordingObserver(TraceDetail& detail, const RayBatch& batch,
-                                     std::size_t ray_count)
+                                     std::size_t ray_count, float cost_intersect)
     : detail_(detail),
       batch_(batch),
+      cost_intersect_(cost_intersect),
       hit_path_(ray_count, 0),
       both_(ray_count, 0),
       both_at_hit_(ray_count, 0),
+      second_(ray_count, 0),
       hit_depth_(ray_count, 0) {}
 
 RecordingObserver::Timer::~Timer() {
@@ -62,6 +64,7 @@ RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
         record.box = node.box;
         record.rays = std::uint32_t(node.ray_count);
         record.triangles = std::uint32_t(node.tri_count);
+        record.leaf_cost = cost_intersect_ * float(node.tri_count);
     }
     if (follows(node)) {
         visit.followed = std::int64_t(detail_.follow.size());
@@ -102,6 +105,7 @@ void RecordingObserver::split(Visit& visit, const Node& node, const Split& split
         hits[0] += left;
         hits[1] += right;
         both_[r] = left && right ? both_[r] | bit : both_[r] & ~bit;
+        second_[r] = (split.first == 0 ? right : left) ? second_[r] | bit : second_[r] & ~bit;
     }
     LevelStats& stats = level(node.depth);
     float alpha_true[2];
@@ -136,11 +140,12 @@ void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int 
         stats.filter_box_tests += node.ray_count;
         stats.ray_box_tests += node.ray_count;
         for (std::size_t i = 0; i < node.ray_count; ++i) ++detail_.rays[node.rays[i]].ray_box_tests;
-        if (visit_index == 1)  // rejected rays that reach the box within [tmin, tmax]
-            for (std::size_t i = child.ray_count; i < node.ray_count; ++i) {
-                const std::uint32_t r = node.rays[i];
-                stats.culled_by_distance += hits_box(batch_, r, child.box, batch_.rays[r].tmax);
-            }
+        // Rejected rays that reached the box when the node was entered: the first child's
+        // hits (bit d of second_ is this node's; deeper nodes set only deeper bits) culled them.
+        const std::uint64_t bit = node.depth < kPathLevels ? std::uint64_t(1) << node.depth : 0;
+        if (visit_index == 1)
+            for (std::size_t i = child.ray_count; i < node.ray_count; ++i)
+                stats.culled_by_distance += (second_[node.rays[i]] & bit) != 0;
     }
     if (visit.node >= 0) {
         NodeRecord& record = detail_.nodes[std::size_t(visit.node)];

@@ -16,7 +16,9 @@ namespace edacrt {
 
 class RecordingObserver {
   public:
-    RecordingObserver(TraceDetail& detail, const RayBatch& batch, std::size_t ray_count);
+    /// `cost_intersect` (C_I) prices the recorded nodes' leaf cost.
+    RecordingObserver(TraceDetail& detail, const RayBatch& batch, std::size_t ray_count,
+                      float cost_intersect);
 
     struct Visit {
         std::int32_t node = -1;      // recorded node
@@ -75,10 +77,12 @@ class RecordingObserver {
 
     TraceDetail& detail_;
     const RayBatch& batch_;
+    float cost_intersect_;
     // Per ray: the path of the leaf that produced its hit (bit d: second-visited child at
     // depth d), that leaf's depth, and bit d set when the ray hit both children's boxes at its
-    // depth-d ancestor (both_ is the current recursion path's, both_at_hit_ the hit's).
-    std::vector<std::uint64_t> hit_path_, both_, both_at_hit_;
+    // depth-d ancestor (both_ is the current recursion path's, both_at_hit_ the hit's);
+    // second_ bit d: the ray reached the box of that ancestor's second child on entering it.
+    std::vector<std::uint64_t> hit_path_, both_, both_at_hit_, second_;
     std::vector<std::uint16_t> hit_depth_;
     // The recorded parent and side of the next node entered (set by child()).
     std::int32_t next_parent_ = -1;

@@ -82,8 +82,9 @@ const std::array<ParamInfo, 16> kParams = {
         "binning", "binning",
         "node-box: the bins span V, the node box, on its longest axis (the paper, Section 3.1). "
         "centroids: they span the range of the centroids on that axis (Wald 2007), so no bin is "
-        "empty at the ends. Either falls back to the centroids' longest axis when all centroids "
-        "land in one bin.",
+        "empty at the ends. When all centroids land in one bin of V, node-box falls back to "
+        "the centroids' range; when they coincide on V's longest axis, both bin along the axis "
+        "where the centroids spread most.",
         kBinnings),
     choice<&EdacrtParams::hit_ratio>(
         "hit-ratio", "hit ratio alpha",
@@ -100,7 +101,7 @@ const std::array<ParamInfo, 16> kParams = {
         "sample-count", "sample count",
         "Rays drawn (with replacement) per sampled node; each is tested against all 2(K-1) "
         "candidate boxes (Section 3.2; the paper uses 100).",
-        1, kCount),
+        1, 1e6),
     choice<&EdacrtParams::small_nodes>(
         "small-nodes", "small nodes",
         "How nodes with at most sample-threshold rays estimate alpha: every-ray tests all their "

@@ -55,10 +55,10 @@ struct EdacrtParams {
     std::uint32_t leaf_rays = 16;
     std::uint32_t leaf_tris = 16;
     std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)
-    float cost_traversal = 2.0f;            // C_T
-    float cost_intersect = 1.0f;            // C_I
-    float cost_filter = 1.0f;               // C_bv
-    float cost_child = 1.0f;                // C_child (FilterSkip::triangles)
+    float cost_traversal = 2.0f;           // C_T
+    float cost_intersect = 1.0f;           // C_I
+    float cost_filter = 1.0f;              // C_bv
+    float cost_child = 1.0f;               // C_child (FilterSkip::triangles)
     HitRatio hit_ratio = HitRatio::sampled;
     TraversalOrder order = TraversalOrder::sampled;
     FilterSkip filter_skip = FilterSkip::paper;

@@ -169,8 +169,10 @@ class Recursion {
         if (p_.filter_skip == FilterSkip::off) return false;
         const float n = float(split.count[side]);
         // n_child C_child. Paper: the child gets all the node's rays, more than leaf_rays, so
-        // it is a leaf by count exactly when it has at most leaf_tris triangles; a leaf tests
-        // each ray against those, an inner child against its two children's boxes.
+        // the count thresholds make it a leaf exactly when it has at most leaf_tris triangles;
+        // a leaf tests each ray against those, an inner child against its two children's
+        // boxes. (A child that ends as a leaf otherwise, unsplittable or by the optional cost
+        // leaf, is priced as an inner one.)
         const float wasted = p_.filter_skip == FilterSkip::triangles ? n * p_.cost_child
                              : split.count[side] <= p_.leaf_tris     ? n * p_.cost_intersect
                                                                      : 2.0f * p_.cost_filter;

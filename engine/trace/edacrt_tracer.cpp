@@ -83,7 +83,7 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
         NullObserver observer;
         return trace(observer);
     }
-    RecordingObserver observer(*detail, batch, n);
+    RecordingObserver observer(*detail, batch, n, params_.cost_intersect);
     const TraceStats stats = trace(observer);
     observer.finish(hits);
     return stats;

@@ -50,8 +50,8 @@ struct LevelStats {
     double alpha_estimated_sum = 0.0;
     double alpha_true_sum = 0.0;
     double alpha_error_sum = 0.0;  // of |estimated - true|
-    // Thread time in the level's own work, by phase (sampling, binning and partitioning,
-    // filtering, leaves); nodes of large levels run their phases in parallel.
+    // Wall time of the level's own work on the recursion's thread, by phase (sampling, binning
+    // and partitioning, filtering, leaves); large nodes run their phases in parallel.
     double phase_seconds[4] = {0.0, 0.0, 0.0, 0.0};
 
     double seconds() const {

@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's --script: UI actions, one per line, for headless tests and demos.
-//   set KEY VALUE      a UI parameter (the keys of the panels: method, bins, spp, ...)
+//   set KEY VALUE      a UI parameter (method, spp, ...; every EDACRT flag without "--",
+//                      e.g. set filter-skip off; set preset paper)
 //   view NAME          render | box | triangle | depth | order
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   frames N           let N frames pass

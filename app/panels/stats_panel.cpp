@@ -63,17 +63,18 @@ void draw_stats_panel(ViewerState& s) {
                 ImGui::TableNextColumn();
                 ImGui::Text("%llu", static_cast<unsigned long long>(v));
             };
-            // The root filter: the batch against the scene box.
+            // The root filter: the batch against the scene box (rays in, rays down, filter
+            // box tests and time; the other columns do not apply).
             const RootStats& root = detail->root;
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             ImGui::TextUnformatted("scene box");
-            for (std::uint64_t v : {std::uint64_t(0), std::uint64_t(0), root.rays, root.entered,
-                                    std::uint64_t(1), std::uint64_t(0), std::uint64_t(0),
-                                    std::uint64_t(0), root.box_tests, std::uint64_t(0)})
-                count(v);
-            for (int i = 0; i < 4; ++i) ImGui::TableNextColumn();
-            ImGui::TableNextColumn();
+            ImGui::TableSetColumnIndex(3);
+            ImGui::Text("%llu", static_cast<unsigned long long>(root.rays));
+            count(root.entered);
+            ImGui::TableSetColumnIndex(9);
+            ImGui::Text("%llu", static_cast<unsigned long long>(root.box_tests));
+            ImGui::TableSetColumnIndex(15);
             ImGui::Text("%.2f", root.seconds * 1e3);
             LevelStats total;
             for (std::size_t i = 0; i <= levels.size(); ++i) {

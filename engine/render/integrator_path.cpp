@@ -50,8 +50,7 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
     std::vector<std::uint8_t> alive, has_shadow;
     for (int depth = 0; !paths.empty(); ++depth) {
         hits.resize(rays.size());
-        if (!wf.trace(rays, hits, Query::closest))
-            return false;
+        if (!wf.trace(rays, hits, Query::closest)) return false;
         const std::size_t n = rays.size();
         next_rays.resize(n);
         shadow_rays.resize(n);

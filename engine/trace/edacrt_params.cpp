@@ -12,9 +12,14 @@
 namespace edacrt {
 namespace {
 
+/// A field as a double; an enum as its index.
 template <auto Member>
 double get_field(const EdacrtParams& p) {
-    return double(p.*Member);
+    using T = std::remove_cvref_t<decltype(p.*Member)>;
+    if constexpr (std::is_enum_v<T>)
+        return double(int(p.*Member));
+    else
+        return double(p.*Member);
 }
 
 template <auto Member>
@@ -24,11 +29,6 @@ void set_field(EdacrtParams& p, double value) {
         p.*Member = static_cast<T>(int(value));
     else
         p.*Member = T(value);
-}
-
-template <auto Member>
-double get_choice(const EdacrtParams& p) {
-    return double(int(p.*Member));
 }
 
 constexpr std::array<std::string_view, 2> kHitRatios = {"sampled", "surface-area"};
@@ -68,7 +68,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             double(names.size() - 1),
             0.0,
             names,
-            get_choice<Member>,
+            get_field<Member>,
             set_field<Member>};
 }
 

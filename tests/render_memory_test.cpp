@@ -84,8 +84,8 @@ TEST(RenderMemory, WhatCannotFitIsRefusedWithTheFigure) {
                                      "EDACRT_MEMORY_LIMIT; choose a smaller size");
     settings.width = settings.height = 512;
     EXPECT_EQ(refusal(settings), "accepted");
-    const std::uint64_t with_extra = render_memory_bytes(settings, 100) / (512 * 512);
-    EXPECT_NE(refusal(settings, 100).find("(" + std::to_string(with_extra) + " bytes per pixel)"),
+    const std::uint64_t with_extra = render_memory_bytes(settings, 400) / (512 * 512);
+    EXPECT_NE(refusal(settings, 400).find("(" + std::to_string(with_extra) + " bytes per pixel)"),
               std::string::npos);
     // The renderer checks too, before allocating anything.
     const Scene scene = make_builtin_scene("builtin:cornell");

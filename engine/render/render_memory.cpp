@@ -16,16 +16,15 @@
 #include "geometry/ray.h"
 #include "geometry/ray_box.h"
 #include "geometry/triangle.h"
+#include "trace/ray_stream.h"
 #include "trace/trace_stats.h"
 #include "util/error.h"
 
 namespace edacrt {
 namespace {
 
-// EdacrtTracer's per-batch buffers (a watertight ray, a slab ray, t_far, an id, and the
-// partition's scratch id and flag per ray), the most any method keeps per ray.
-constexpr std::uint64_t kTracerBytesPerRay =
-    sizeof(WatertightRay) + sizeof(SlabRay) + sizeof(float) + 2 * sizeof(std::uint32_t) + 1;
+// EdacrtTracer's ray stream, the most any method keeps per ray.
+constexpr std::uint64_t kTracerBytesPerRay = RayStream::kBytesPerRay;
 
 // The path integrator's per-path state (PathState in integrator_path.cpp: throughput, pixel,
 // pdf).

@@ -8,9 +8,20 @@ namespace {
 
 std::uint16_t clamp_depth(int depth) { return std::uint16_t(std::min(depth, 65535)); }
 
-bool hits_box(const RayBatch& batch, std::uint32_t r, const Aabb& box, float t_far) {
+/// Whether the ray at stream position i reaches `box` now.
+bool hits_box(const RayStream& stream, std::size_t i, const Aabb& box) {
     float entry;
-    return intersect_box(batch.srays[r], box, t_far, entry);
+    return intersect_box(stream.slab_ray(i), box, stream.t_far[i], entry);
+}
+
+/// The ids of a node's rays.
+std::span<const std::uint32_t> ids(const RayStream& stream, const Node& node) {
+    return {stream.id + node.ray_begin, node.ray_count};
+}
+
+bool holds(const RayStream& stream, const Node& node, std::int64_t ray) {
+    const auto rays = ids(stream, node);
+    return ray >= 0 && std::find(rays.begin(), rays.end(), std::uint32_t(ray)) != rays.end();
 }
 
 }  // namespace
@@ -37,9 +48,7 @@ LevelStats& RecordingObserver::level(int depth) {
 }
 
 bool RecordingObserver::follows(const Node& node) const {
-    const auto r = std::uint32_t(detail_.follow_ray);
-    return detail_.follow_ray >= 0 &&
-           std::find(node.rays, node.rays + node.ray_count, r) != node.rays + node.ray_count;
+    return holds(batch_.stream, node, detail_.follow_ray);
 }
 
 void RecordingObserver::root(std::uint32_t* ids, std::size_t rays, std::size_t entered,
@@ -75,8 +84,8 @@ RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
     ++stats.nodes;
     stats.rays_in += node.ray_count;
     stats.triangles += node.tri_count;
-    for (std::size_t i = 0; i < node.ray_count; ++i) {
-        std::uint16_t& deepest = detail_.rays[node.rays[i]].deepest_level;
+    for (const std::uint32_t r : ids(batch_.stream, node)) {
+        std::uint16_t& deepest = detail_.rays[r].deepest_level;
         deepest = std::max(deepest, clamp_depth(node.depth));
     }
     return visit;
@@ -98,10 +107,10 @@ void RecordingObserver::split(Visit& visit, const Node& node, const Split& split
     // Statistics only: these box tests are not counted anywhere.
     std::size_t hits[2] = {0, 0};
     const std::uint64_t bit = node.depth < kPathLevels ? std::uint64_t(1) << node.depth : 0;
-    for (std::size_t i = 0; i < node.ray_count; ++i) {
-        const std::uint32_t r = node.rays[i];
-        const bool left = hits_box(batch_, r, split.box[0], batch_.t_far[r]);
-        const bool right = hits_box(batch_, r, split.box[1], batch_.t_far[r]);
+    for (std::size_t i = node.ray_begin; i < node.ray_begin + node.ray_count; ++i) {
+        const std::uint32_t r = batch_.stream.id[i];
+        const bool left = hits_box(batch_.stream, i, split.box[0]);
+        const bool right = hits_box(batch_.stream, i, split.box[1]);
         hits[0] += left;
         hits[1] += right;
         both_[r] = left && right ? both_[r] | bit : both_[r] & ~bit;
@@ -139,13 +148,14 @@ void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int 
         ++stats.filters_done;
         stats.filter_box_tests += node.ray_count;
         stats.ray_box_tests += node.ray_count;
-        for (std::size_t i = 0; i < node.ray_count; ++i) ++detail_.rays[node.rays[i]].ray_box_tests;
+        const auto rays = ids(batch_.stream, node);
+        for (const std::uint32_t r : rays) ++detail_.rays[r].ray_box_tests;
         // Rejected rays that reached the box when the node was entered: the first child's
         // hits (bit d of second_ is this node's; deeper nodes set only deeper bits) culled them.
         const std::uint64_t bit = node.depth < kPathLevels ? std::uint64_t(1) << node.depth : 0;
         if (visit_index == 1)
             for (std::size_t i = child.ray_count; i < node.ray_count; ++i)
-                stats.culled_by_distance += (second_[node.rays[i]] & bit) != 0;
+                stats.culled_by_distance += (second_[rays[i]] & bit) != 0;
     }
     if (visit.node >= 0) {
         NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
@@ -155,11 +165,9 @@ void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int 
     // The recursion enters the child (if it has rays) right after this hook.
     next_parent_ = visit.node;
     next_side_ = side;
-    if (visit.followed >= 0) {
-        const auto r = std::uint32_t(detail_.follow_ray);
+    if (visit.followed >= 0)
         detail_.follow[std::size_t(visit.followed)].passed[side] =
-            std::find(child.rays, child.rays + child.ray_count, r) != child.rays + child.ray_count;
-    }
+            holds(batch_.stream, child, detail_.follow_ray);
 }
 
 void RecordingObserver::leaf(Visit& visit, const Node& node, std::uint64_t tests) {

@@ -55,7 +55,7 @@ class RecordingObserver {
     /// Before the children: measures the true hit ratios and which rays hit both children.
     void split(Visit& visit, const Node& node, const Split& split);
     /// `child` holds the rays passed to side `side`; when filtered, the rejected ones follow
-    /// them in node.rays.
+    /// them in the node's range of the stream.
     void child(Visit& visit, const Node& node, const Split& split, int side, int visit_index,
                bool skipped, const Node& child);
     void leaf_ray(std::uint32_t ray, std::uint32_t tests) {

@@ -17,8 +17,12 @@
 #include "geometry/binning.h"
 #include "geometry/ray.h"
 #include "geometry/ray_box.h"
+#include "geometry/ray_box8.h"
 #include "geometry/triangle.h"
+#include "geometry/triangle8.h"
 #include "trace/edacrt_params.h"
+#include "trace/ray_filter.h"
+#include "trace/ray_stream.h"
 #include "trace/stable_partition.h"
 #include "trace/trace_stats.h"
 #include "trace/tracer.h"
@@ -34,20 +38,18 @@ struct EdacrtScene {
     Aabb box;
 };
 
-/// Per-ray data of one batch, indexed by ray number.
+/// One batch: the stream the recursion partitions, and the input rays and output hits, indexed
+/// by the ray's number (its id in the stream).
 struct RayBatch {
-    const Ray* rays;
-    const WatertightRay* wrays;
-    const SlabRay* srays;
-    float* t_far;  // the current search distance: the closest hit so far; -inf once an any-hit
-                   // ray is done, which removes it from every later filter and leaf
+    const Ray* rays;  // the leaves take tmin and the exact direction from here
+    RayStream stream;
     Hit* hits;
 };
 
 /// A subproblem: the rays that reach V, and the triangles whose bounds make up V.
 struct Node {
-    Aabb box;  // V
-    std::uint32_t* rays;
+    Aabb box;               // V
+    std::size_t ray_begin;  // the node's rays are stream positions [ray_begin, + ray_count)
     std::size_t ray_count;
     std::uint32_t* tris;
     std::size_t tri_count;
@@ -106,18 +108,18 @@ class Recursion {
           left_hits_(params.bins),
           right_hits_(params.bins),
           left_first_(params.bins),
-          right_first_(params.bins) {}
+          right_first_(params.bins),
+          left_boxes_((params.bins + 6) / 8),
+          right_boxes_((params.bins + 6) / 8),
+          counters_(4 * std::size_t((params.bins + 6) / 8)) {}
 
     /// The ray-box and ray-triangle tests done so far.
     const TraceStats& totals() const { return totals_; }
 
     /// Moves the rays that reach `box` before their current hit to the front; returns how many.
-    std::size_t filter(std::uint32_t* rays, std::size_t count, const Aabb& box) {
+    std::size_t filter(std::size_t begin, std::size_t count, const Aabb& box) {
         totals_.ray_box_tests += count;
-        return partition(rays, count, scratch_, [&](std::uint32_t r) {
-            float entry;
-            return intersect_box(batch_.srays[r], box, batch_.t_far[r], entry);
-        });
+        return filter_rays(batch_.stream, begin, count, box);
     }
 
     /// Algorithm 1.
@@ -146,14 +148,14 @@ class Recursion {
         // (Section 3.4).
         for (const int visit_index : {0, 1}) {
             const int side = visit_index == 0 ? split.first : 1 - split.first;
-            Node child{split.box[side],   node.rays,      node.ray_count, child_tris[side],
+            Node child{split.box[side],   node.ray_begin, node.ray_count, child_tris[side],
                        split.count[side], node.depth + 1, node.path};
             if (visit_index == 1 && node.depth < kPathLevels)
                 child.path |= std::uint64_t(1) << node.depth;
             const bool skipped = skip_filter(split, side);
             if (!skipped) {
                 [[maybe_unused]] auto timer = obs_.time(Phase::filtering, node.depth);
-                child.ray_count = filter(node.rays, node.ray_count, child.box);
+                child.ray_count = filter(node.ray_begin, node.ray_count, child.box);
             }
             obs_.child(visit, node, split, side, visit_index, skipped, child);
             run(child);
@@ -349,42 +351,88 @@ class Recursion {
             !small || (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
         samples_ = draw ? p_.sample_count : std::uint32_t(node.ray_count);
         const int candidates = p_.bins - 1;
-        std::fill_n(left_hits_.begin(), candidates, 0);
-        std::fill_n(right_hits_.begin(), candidates, 0);
-        std::fill_n(left_first_.begin(), candidates, 0);
-        std::fill_n(right_first_.begin(), candidates, 0);
         const std::uint32_t node_seed = hash_combine(
             hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
         const auto tests_per_sample = std::uint32_t(2 * candidates);
         totals_.ray_box_tests += std::uint64_t(samples_) * tests_per_sample;
         obs_.sampled(node, samples_, std::uint64_t(samples_) * tests_per_sample);
-        for (std::uint32_t s = 0; s < samples_; ++s) {
-            const std::uint32_t r =
-                draw ? node.rays[(std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >> 32]
-                     : node.rays[s];
-            obs_.sampled_ray(r, tests_per_sample);
-            const SlabRay& ray = batch_.srays[r];
-            const float t_far = batch_.t_far[r];
-            const bool left_on_tie = !std::signbit(ray.inv_dir[axis]);
-            for (int j = 0; j < candidates; ++j) {
-                float left_entry = 0.0f, right_entry = 0.0f;
-                const bool left = intersect_box(ray, left_bounds_[j], t_far, left_entry);
-                const bool right = intersect_box(ray, right_bounds_[j], t_far, right_entry);
-                left_hits_[j] += left;
-                right_hits_[j] += right;
-                const bool left_nearer =
-                    left_entry < right_entry || (left_entry == right_entry && left_on_tie);
-                left_first_[j] += left && (!right || left_nearer);
-                right_first_[j] += right && (!left || !left_nearer);
+        // Eight candidates at a time: each sampled ray against eight left and eight right
+        // boxes, the per-candidate counts kept in vector lanes.
+        const int blocks = (candidates + 7) / 8;
+        for (int b = 0; b < blocks; ++b) {
+            Aabb left[8], right[8];  // empty boxes pad the last block
+            for (int l = 0; l < 8 && 8 * b + l < candidates; ++l) {
+                left[l] = left_bounds_[8 * b + l];
+                right[l] = right_bounds_[8 * b + l];
             }
+            left_boxes_[b] = gather(left);
+            right_boxes_[b] = gather(right);
+            std::fill_n(&counters_[4 * b], 4, Counters{_mm256_setzero_si256()});
+        }
+        const RayStream& stream = batch_.stream;
+        for (std::uint32_t s = 0; s < samples_; ++s) {
+            const std::size_t i =
+                node.ray_begin +
+                (draw ? std::size_t((std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >>
+                                    32)
+                      : s);
+            obs_.sampled_ray(stream.id[i], tests_per_sample);
+            const SlabRay8 ray = broadcast(stream.slab_ray(i), stream.t_far[i]);
+            const __m256 left_on_tie = _mm256_castsi256_ps(
+                _mm256_set1_epi32(std::signbit(stream.inv_dir[axis][i]) ? 0 : -1));
+            for (int b = 0; b < blocks; ++b) {
+                __m256 left_entry, right_entry;
+                const __m256 left = intersect_box8(ray, left_boxes_[b], left_entry);
+                const __m256 right = intersect_box8(ray, right_boxes_[b], right_entry);
+                const __m256 left_nearer = _mm256_or_ps(
+                    _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
+                    _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
+                // left && (!right || left_nearer), right && (!left || !left_nearer)
+                const __m256 left_first =
+                    _mm256_and_ps(left, _mm256_or_ps(_mm256_andnot_ps(right, left), left_nearer));
+                const __m256 right_first =
+                    _mm256_andnot_ps(_mm256_and_ps(left, left_nearer), right);
+                const __m256 masks[4] = {left, right, left_first, right_first};
+                for (int k = 0; k < 4; ++k)  // a true lane is -1: subtracting counts it
+                    counters_[4 * b + k].lanes =
+                        _mm256_sub_epi32(counters_[4 * b + k].lanes, _mm256_castps_si256(masks[k]));
+            }
+        }
+        for (int j = 0; j < candidates; ++j) {
+            const auto lane = [&](int k) {
+                alignas(32) std::uint32_t lanes[8];
+                _mm256_store_si256(reinterpret_cast<__m256i*>(lanes),
+                                   counters_[4 * (j / 8) + k].lanes);
+                return lanes[j % 8];
+            };
+            left_hits_[j] = lane(0);
+            right_hits_[j] = lane(1);
+            left_first_[j] = lane(2);
+            right_first_[j] = lane(3);
         }
         return true;
     }
 
+    static Aabb8 gather(const Aabb (&boxes)[8]) {
+        Aabb8 b;
+        for (int k = 0; k < 3; ++k) {
+            alignas(32) float lo[8], hi[8];
+            for (int l = 0; l < 8; ++l) {
+                lo[l] = boxes[l].lo[k];
+                hi[l] = boxes[l].hi[k];
+            }
+            b.lo[k] = _mm256_load_ps(lo);
+            b.hi[k] = _mm256_load_ps(hi);
+        }
+        return b;
+    }
+
     std::size_t count_negative(const Node& node, int axis) const {
+        // 1/dir keeps the sign of dir, also for -0
+        const float* inv_dir = batch_.stream.inv_dir[axis] + node.ray_begin;
         const auto count = [&](const tbb::blocked_range<std::size_t>& range, std::size_t n) {
             for (std::size_t i = range.begin(); i != range.end(); ++i)
-                n += std::signbit(batch_.rays[node.rays[i]].dir[axis]);
+                n += std::signbit(inv_dir[i]);
             return n;
         };
         const tbb::blocked_range<std::size_t> all(0, node.ray_count, kParallelItems);
@@ -392,37 +440,65 @@ class Recursion {
         return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>());
     }
 
-    /// Brute force: every ray against every triangle of the node, in parallel over rays when
-    /// the node is large (rays are independent). An any-hit ray that is already done (passed
-    /// down unfiltered) is skipped.
+    /// Brute force: every ray against every triangle of the node, eight triangles at a time,
+    /// in parallel over rays when the node is large (rays are independent). An any-hit ray
+    /// that is already done (passed down unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
+        const std::size_t blocks = (node.tri_count + 7) / 8;
+        tri_blocks_.resize(std::max(tri_blocks_.size(), blocks));
+        for (std::size_t k = 0; k < blocks * 8; ++k) {
+            TriangleBlock8& block = tri_blocks_[k / 8];
+            const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
+            const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
+        }
+        const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
+        const RayStream& stream = batch_.stream;
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const std::uint32_t r = node.rays[i];
-                float& t_far = batch_.t_far[r];
+                float& t_far = stream.t_far[i];
                 if (Q == Query::any && t_far == -kInfinity) continue;
+                const std::uint32_t r = stream.id[i];
                 const float tmin = batch_.rays[r].tmin;
-                const WatertightRay& wray = batch_.wrays[r];
-                TriangleHit hit;
-                std::size_t k = 0;
-                while (k < node.tri_count) {
-                    const std::uint32_t t = node.tris[k++];
-                    if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit)) continue;
-                    batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
-                    obs_.hit(r, node);
-                    if constexpr (Q == Query::any) {
-                        t_far = -kInfinity;
-                        break;
+                const WatertightRay wray = make_watertight_ray(batch_.rays[r]);
+                std::size_t tested = node.tri_count;
+                for (std::size_t b = 0; b < blocks; ++b) {
+                    TriangleLanes8 lanes;
+                    intersect_triangle8(wray, tri_blocks_[b], b + 1 < blocks ? 0xffu : last_valid,
+                                        tmin, t_far, lanes);
+                    // In triangle order, as the scalar loop: t_far shrinks with each hit.
+                    for (unsigned todo = lanes.accepted | lanes.scalar; todo; todo &= todo - 1) {
+                        const int lane = std::countr_zero(todo);
+                        const std::uint32_t t = node.tris[8 * b + std::size_t(lane)];
+                        TriangleHit hit;
+                        if ((lanes.scalar >> lane) & 1) {
+                            if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit))
+                                continue;
+                        } else {
+                            if (!(lanes.t[lane] <= t_far)) continue;
+                            hit = {lanes.t[lane], lanes.v[lane] * lanes.inv_det[lane],
+                                   lanes.w[lane] * lanes.inv_det[lane]};
+                        }
+                        batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+                        obs_.hit(r, node);
+                        if constexpr (Q == Query::any) {
+                            t_far = -kInfinity;
+                            tested = 8 * b + std::size_t(lane) + 1;
+                            b = blocks;
+                            break;
+                        }
+                        t_far = hit.t;
                     }
-                    t_far = hit.t;
                 }
-                obs_.leaf_ray(r, std::uint32_t(k));
-                tests += k;
+                obs_.leaf_ray(r, std::uint32_t(tested));
+                tests += tested;
             }
             return tests;
         };
-        const tbb::blocked_range<std::size_t> all(0, node.ray_count, 16);
+        const tbb::blocked_range<std::size_t> all(node.ray_begin, node.ray_begin + node.ray_count,
+                                                  16);
         const std::uint64_t tests =
             node.ray_count * node.tri_count < kParallelLeafTests
                 ? trace(all, 0)
@@ -444,6 +520,13 @@ class Recursion {
     std::vector<Aabb> bin_bounds_, left_bounds_, right_bounds_;
     std::vector<std::size_t> bin_count_;
     std::vector<std::uint32_t> left_hits_, right_hits_, left_first_, right_first_;
+    // The candidates' boxes eight at a time and, per block, the four sampling counters.
+    std::vector<Aabb8> left_boxes_, right_boxes_;
+    struct Counters {
+        __m256i lanes;
+    };
+    std::vector<Counters> counters_;
+    std::vector<TriangleBlock8> tri_blocks_;  // the leaf's triangles
     std::uint32_t samples_ = 0;
 };
 

@@ -42,39 +42,27 @@ template <Query Q>
 TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hits,
                                     TraceDetail* detail) {
     const std::size_t n = rays.size(), triangles = scene_.triangles.size();
-    batch_.wrays.resize(n);
-    batch_.srays.resize(n);
-    batch_.t_far.resize(n);
-    batch_.ids.resize(n);
     batch_.tris.resize(triangles);
-    batch_.scratch.reserve(std::max(n, triangles));
+    batch_.scratch.reserve(triangles);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            batch_.wrays[i] = make_watertight_ray(rays[i]);
-            batch_.srays[i] = make_slab_ray(rays[i]);
-            batch_.t_far[i] = rays[i].tmax;
-            batch_.ids[i] = std::uint32_t(i);
-            hits[i] = Hit{};
-        }
+        std::fill(hits.begin() + range.begin(), hits.begin() + range.end(), Hit{});
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i)
             batch_.tris[i] = std::uint32_t(i);
     });
-    const RayBatch batch{rays.data(), batch_.wrays.data(), batch_.srays.data(), batch_.t_far.data(),
-                         hits.data()};
+    const RayBatch batch{rays.data(), batch_.rays.fill(rays), hits.data()};
 
     // One recursion from the scene box over the rays that reach it.
     const auto trace = [&](auto& observer) {
         Recursion<Q, std::decay_t<decltype(observer)>> recursion(params_, scene_, batch,
                                                                  batch_.scratch, observer);
         const auto start = std::chrono::steady_clock::now();
-        const std::size_t entered = recursion.filter(batch_.ids.data(), n, scene_.box);
+        const std::size_t entered = recursion.filter(0, n, scene_.box);
         observer.root(
-            batch_.ids.data(), n, entered,
+            batch.stream.id, n, entered,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        recursion.run(
-            Node{scene_.box, batch_.ids.data(), entered, batch_.tris.data(), triangles, 0, 0});
+        recursion.run(Node{scene_.box, 0, entered, batch_.tris.data(), triangles, 0, 0});
         TraceStats stats = recursion.totals();
         stats.rays = n;
         return stats;

@@ -5,6 +5,7 @@
 #include "geometry/ray_box.h"
 #include "trace/edacrt_params.h"
 #include "trace/edacrt_recursion.h"
+#include "trace/ray_stream.h"
 #include "trace/tracer.h"
 
 namespace edacrt {
@@ -24,13 +25,11 @@ class EdacrtTracer final : public Tracer {
     /// Throws InputError for parameters out of range (see validate()).
     void set_params(const EdacrtParams& params);
 
-    /// Per-batch ray data, kept between batches to avoid reallocating.
+    /// Per-batch data, kept between batches to avoid reallocating.
     struct BatchBuffers {
-        std::vector<WatertightRay> wrays;
-        std::vector<SlabRay> srays;
-        std::vector<float> t_far;
-        std::vector<std::uint32_t> ids, tris;
-        PartitionScratch scratch;
+        RayStreamStorage rays;
+        std::vector<std::uint32_t> tris;
+        PartitionScratch scratch;  // for the triangle partitions
     };
 
   protected:

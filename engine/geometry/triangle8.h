@@ -1,0 +1,129 @@
+#pragma once
+// intersect_triangle (triangle.h) for one ray against eight triangles with AVX2, bit for bit:
+// the float path's operations in the same order (max_ps with swapped operands is std::max),
+// and every lane the float path cannot decide alone (an uncertain edge, an untrusted
+// distance) handed back to the scalar test, which then takes its double-precision path. The
+// caller resolves the lanes in triangle order, so its hits are those of the scalar loop.
+#include <immintrin.h>
+
+#include "geometry/triangle.h"
+
+namespace edacrt {
+
+/// Eight triangles' corners: p[corner][axis][lane].
+struct TriangleBlock8 {
+    alignas(32) float p[3][3][8];
+};
+
+/// What the float path decided for eight triangles.
+struct TriangleLanes8 {
+    unsigned accepted = 0;  // a hit at t in [tmin, tmax], barycentrics v, w times inv_det
+    unsigned scalar = 0;    // undecided: the caller runs intersect_triangle on these
+    alignas(32) float t[8], v[8], w[8], inv_det[8];
+};
+
+namespace simd8 {
+
+inline __m256 set(float x) { return _mm256_set1_ps(x); }
+inline __m256 abs(__m256 x) { return _mm256_andnot_ps(set(-0.0f), x); }
+inline __m256 mul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
+inline __m256 add(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
+inline __m256 sub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
+inline __m256 any(__m256 a, __m256 b) { return _mm256_or_ps(a, b); }
+inline __m256 any(__m256 a, __m256 b, __m256 c) { return any(any(a, b), c); }
+inline __m256 all(__m256 a, __m256 b) { return _mm256_and_ps(a, b); }
+/// std::max(a, b), i.e. a < b ? b : a: a NaN in a is kept, as in the scalar code.
+inline __m256 max(__m256 a, __m256 b) { return _mm256_max_ps(b, a); }
+/// std::max({a, b, c}).
+inline __m256 max(__m256 a, __m256 b, __m256 c) { return max(max(a, b), c); }
+template <int Cmp>
+inline __m256 cmp(__m256 a, __m256 b) {
+    return _mm256_cmp_ps(a, b, Cmp);
+}
+
+}  // namespace simd8
+
+/// The float path of intersect_triangle for `ray` against the lanes of `valid` in `tris`.
+[[gnu::always_inline]] inline void intersect_triangle8(const WatertightRay& ray,
+                                                       const TriangleBlock8& tris, unsigned valid,
+                                                       float tmin, float tmax,
+                                                       TriangleLanes8& out) {
+    using namespace simd8;
+    // shear_triangle: each corner relative to the origin, in the ray's frame.
+    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+    const __m256 sx = set(ray.sx), sy = set(ray.sy), sz = set(ray.sz);
+    __m256 x[3], y[3], z[3];
+    for (int c = 0; c < 3; ++c) {
+        const __m256 rx = sub(_mm256_load_ps(tris.p[c][kx]), set(ray.org[kx]));
+        const __m256 ry = sub(_mm256_load_ps(tris.p[c][ky]), set(ray.org[ky]));
+        const __m256 rz = sub(_mm256_load_ps(tris.p[c][kz]), set(ray.org[kz]));
+        x[c] = sub(rx, mul(sx, rz));
+        y[c] = sub(ry, mul(sy, rz));
+        z[c] = mul(sz, rz);
+    }
+    // Edge functions U = C x B, V = A x C, W = B x A, each as the difference of two products.
+    const __m256 pu = mul(x[2], y[1]), qu = mul(y[2], x[1]);
+    const __m256 pv = mul(x[0], y[2]), qv = mul(y[0], x[2]);
+    const __m256 pw = mul(x[1], y[0]), qw = mul(y[1], x[0]);
+    const __m256 u = sub(pu, qu), v = sub(pv, qv), w = sub(pw, qw);
+    const auto uncertain = [](__m256 e, __m256 p, __m256 q) {  // edge_uncertain
+        const __m256 bound = max(mul(set(0x1p-18f), add(abs(p), abs(q))), set(0x1p-100f));
+        return cmp<_CMP_NGT_UQ>(abs(e), bound);
+    };
+    const __m256 undecided_edges =
+        any(uncertain(u, pu, qu), uncertain(v, pv, qv), uncertain(w, pw, qw));
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 outside =
+        all(any(cmp<_CMP_LT_OQ>(u, zero), cmp<_CMP_LT_OQ>(v, zero), cmp<_CMP_LT_OQ>(w, zero)),
+            any(cmp<_CMP_GT_OQ>(u, zero), cmp<_CMP_GT_OQ>(v, zero), cmp<_CMP_GT_OQ>(w, zero)));
+    // decide_distance
+    const __m256 det = add(add(u, v), w);
+    const __m256 inv_det = _mm256_div_ps(set(1.0f), det);
+    const __m256 t = mul(add(add(mul(u, z[0]), mul(v, z[1])), mul(w, z[2])), inv_det);
+    // ShearedTriangle::distance_error(t, |dir[kx]|, |dir[ky]|)
+    const __m256 max_z = max(abs(z[0]), abs(z[1]), abs(z[2]));
+    const __m256 max_x = max(abs(x[0]), abs(x[1]), abs(x[2]));
+    const __m256 max_y = max(abs(y[0]), abs(y[1]), abs(y[2]));
+    const __m256 spread = max(abs(sub(z[0], t)), abs(sub(z[1], t)), abs(sub(z[2], t)));
+    const float gamma2 = rounding_gamma<float>(2), gamma3 = rounding_gamma<float>(3),
+                gamma5 = rounding_gamma<float>(5);
+    const __m256 delta_z = mul(set(gamma3), max_z);
+    const __m256 delta_x = mul(set(gamma5), add(max_x, mul(set(std::abs(ray.dir[kx])), max_z)));
+    const __m256 delta_y = mul(set(gamma5), add(max_y, mul(set(std::abs(ray.dir[ky])), max_z)));
+    const __m256 delta_e = mul(
+        set(2.0f),
+        add(add(mul(mul(set(gamma2), max_x), max_y), mul(delta_y, max_x)), mul(delta_x, max_y)));
+    const __m256 max_e = max(abs(u), abs(v), abs(w));
+    const __m256 denominator =
+        sub(sub(abs(det), mul(set(6.0f), delta_e)), mul(set(3.0f * gamma2), max_e));
+    const __m256 numerator =
+        mul(set(3.0f), add(add(add(add(mul(mul(set(gamma3), max_e), max_z), mul(delta_e, spread)),
+                                   mul(delta_z, max_e)),
+                               mul(delta_e, delta_z)),
+                           mul(mul(set(gamma2), max_e), abs(t))));
+    const __m256 error = _mm256_blendv_ps(
+        set(kInfinity), add(_mm256_div_ps(numerator, denominator), mul(set(gamma2), abs(t))),
+        cmp<_CMP_GT_OQ>(denominator, zero));
+    const __m256 lo = set(tmin), hi = set(tmax);
+    const __m256 near_end = add(t, error);
+    const __m256 rejected = any(cmp<_CMP_LE_OQ>(near_end, zero), cmp<_CMP_LT_OQ>(near_end, lo),
+                                cmp<_CMP_GT_OQ>(sub(t, error), hi));
+    const __m256 trusted = all(cmp<_CMP_LE_OQ>(error, mul(t, set(kTrustedDistanceError))),
+                               cmp<_CMP_LT_OQ>(t, set(kInfinity)));
+    const __m256 in_range = all(cmp<_CMP_GE_OQ>(t, lo), cmp<_CMP_LE_OQ>(t, hi));
+    const unsigned edges = unsigned(_mm256_movemask_ps(undecided_edges));
+    // The line passes through the triangle and the distance was not rejected outright.
+    const unsigned through = ~unsigned(_mm256_movemask_ps(any(outside, rejected))) & 0xffu;
+    const unsigned trusted_lanes = unsigned(_mm256_movemask_ps(trusted));
+    out.scalar = valid & (edges | (through & ~trusted_lanes));
+    out.accepted =
+        valid & ~edges & through & trusted_lanes & unsigned(_mm256_movemask_ps(in_range));
+    if (out.accepted) {
+        _mm256_store_ps(out.t, t);
+        _mm256_store_ps(out.v, v);
+        _mm256_store_ps(out.w, w);
+        _mm256_store_ps(out.inv_det, inv_det);
+    }
+}
+
+}  // namespace edacrt

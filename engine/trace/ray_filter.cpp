@@ -1,0 +1,210 @@
+// An in-place partition eight rays at a time (AVX2): each block of eight is tested against the
+// box, permuted so that its passing rays come first, and stored twice, at the passing end and
+// at the rejected end of the range; the range is read from whichever end has less room, so
+// both stores always land on rays already read (the two-ended vectorised partition of
+// Bramas 2017, used by vxsort). Nine arrays move together, so a node's rays stay contiguous.
+#include "trace/ray_filter.h"
+
+#include <immintrin.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cassert>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/ray_box8.h"
+
+namespace edacrt {
+namespace {
+
+constexpr int kArrays = 9;
+
+/// For each 8-bit mask, the lanes with their bit set, in order, then the others (3 bits each
+/// in one byte per output lane).
+constexpr std::array<std::uint64_t, 256> make_pass_first() {
+    std::array<std::uint64_t, 256> table{};
+    for (unsigned mask = 0; mask < 256; ++mask) {
+        int out = 0;
+        for (int pass : {1, 0})
+            for (unsigned lane = 0; lane < 8; ++lane)
+                if (((mask >> lane) & 1) == unsigned(pass))
+                    table[mask] |= std::uint64_t(lane) << (8 * out++);
+    }
+    return table;
+}
+constexpr std::array<std::uint64_t, 256> kPassFirst = make_pass_first();
+
+struct Arrays {
+    float* a[kArrays];
+    explicit Arrays(const RayStream& s)
+        : a{s.org[0],     s.org[1],     s.org[2],
+            s.inv_dir[0], s.inv_dir[1], s.inv_dir[2],
+            s.tmin,       s.t_far,      reinterpret_cast<float*>(s.id)} {}
+};
+
+struct Block {
+    __m256 v[kArrays];
+};
+
+Block load(const Arrays& s, std::size_t i) {
+    Block b;
+    for (int k = 0; k < kArrays; ++k) b.v[k] = _mm256_loadu_ps(s.a[k] + i);
+    return b;
+}
+
+unsigned passes(const Block& b, const Aabb8& box) {
+    const SlabRay8 ray{{b.v[0], b.v[1], b.v[2]}, {b.v[3], b.v[4], b.v[5]}, b.v[6], b.v[7]};
+    __m256 entry;
+    return unsigned(_mm256_movemask_ps(intersect_box8(ray, box, entry)));
+}
+
+bool passes(const Arrays& s, std::size_t i, const Aabb& box) {
+    const SlabRay ray{
+        {s.a[0][i], s.a[1][i], s.a[2][i]}, {s.a[3][i], s.a[4][i], s.a[5][i]}, s.a[6][i], 0.0f};
+    float entry;
+    return intersect_box(ray, box, s.a[7][i], entry);
+}
+
+void swap_rays(const Arrays& s, std::size_t i, std::size_t j) {
+    for (int k = 0; k < kArrays; ++k) std::swap(s.a[k][i], s.a[k][j]);
+}
+
+std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t end,
+                              const Aabb& box) {
+    if (end - begin < 16) {
+        std::size_t i = begin, j = end;
+        while (i < j)
+            if (passes(s, i, box))
+                ++i;
+            else
+                swap_rays(s, i, --j);
+        return i - begin;
+    }
+    const Aabb8 box8 = broadcast(box);
+    // Passing rays are written upwards from write_l, rejected ones downwards from write_r.
+    // The first and last blocks wait in registers, so 16 rays of room exist between the
+    // cursors and the unread middle; reading from the end with less room keeps at least 8 on
+    // each side, enough for a full store of either kind.
+    const Block first = load(s, begin), last = load(s, end - 8);
+    std::size_t read_l = begin + 8, read_r = end - 8, write_l = begin, write_r = end;
+    while (read_r - read_l >= 8) {
+        Block b;
+        if (read_l - write_l <= write_r - read_r) {
+            b = load(s, read_l);
+            read_l += 8;
+        } else {
+            read_r -= 8;
+            b = load(s, read_r);
+        }
+        const unsigned mask = passes(b, box8);
+        const __m256i order =
+            _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kPassFirst[mask])));
+        const int passed = std::popcount(mask);
+        for (int k = 0; k < kArrays; ++k) {
+            const __m256 v = _mm256_permutevar8x32_ps(b.v[k], order);
+            _mm256_storeu_ps(s.a[k] + write_l, v);
+            _mm256_storeu_ps(s.a[k] + write_r - 8, v);
+        }
+        write_l += std::size_t(passed);
+        write_r -= std::size_t(8 - passed);
+    }
+    // The gap [write_l, write_r) now holds exactly the unread middle and room for the two
+    // waiting blocks: move the middle out, then place all of them one by one.
+    const std::size_t middle = read_r - read_l;
+    alignas(32) float pending[kArrays][24];
+    for (int k = 0; k < kArrays; ++k) {
+        _mm256_store_ps(pending[k], first.v[k]);
+        _mm256_store_ps(pending[k] + 8, last.v[k]);
+        std::copy_n(s.a[k] + read_l, middle, pending[k] + 16);
+    }
+    const unsigned mask = passes(first, box8) | passes(last, box8) << 8;
+    Arrays p = s;
+    for (int k = 0; k < kArrays; ++k) p.a[k] = pending[k];
+    for (std::size_t i = 0; i < 16 + middle; ++i) {
+        const bool pass = i < 16 ? ((mask >> i) & 1) != 0 : passes(p, i, box);
+        const std::size_t to = pass ? write_l++ : --write_r;
+        for (int k = 0; k < kArrays; ++k) s.a[k][to] = pending[k][i];
+    }
+    return write_l - begin;
+}
+
+/// A run of misplaced rays: rejected ones before the split point, or passing ones after it.
+struct Run {
+    std::size_t start, count, before;  // `before`: misplaced rays in earlier runs
+};
+
+/// Where the misplaced ray numbered k lies: the run that holds it and the offset in that run.
+std::pair<std::size_t, std::size_t> locate(const std::vector<Run>& runs, std::size_t k) {
+    const auto run = std::upper_bound(runs.begin(), runs.end(), k,
+                                      [](std::size_t x, const Run& r) { return x < r.before; }) -
+                     1;
+    return {std::size_t(run - runs.begin()), k - run->before};
+}
+
+/// Swaps the misplaced rays numbered [from, to) of `left` with those of `right`, a stretch of
+/// consecutive positions at a time.
+void swap_misplaced(const Arrays& s, const std::vector<Run>& left, const std::vector<Run>& right,
+                    std::size_t from, std::size_t to) {
+    auto [l, l_offset] = locate(left, from);
+    auto [r, r_offset] = locate(right, from);
+    for (std::size_t k = from; k < to;) {
+        const std::size_t n =
+            std::min({to - k, left[l].count - l_offset, right[r].count - r_offset});
+        const std::size_t i = left[l].start + l_offset, j = right[r].start + r_offset;
+        for (int a = 0; a < kArrays; ++a) std::swap_ranges(s.a[a] + i, s.a[a] + i + n, s.a[a] + j);
+        k += n;
+        l_offset += n;
+        r_offset += n;
+        if (l_offset == left[l].count) ++l, l_offset = 0;
+        if (r_offset == right[r].count) ++r, r_offset = 0;
+    }
+}
+
+}  // namespace
+
+std::size_t filter_rays(const RayStream& stream, std::size_t begin, std::size_t count,
+                        const Aabb& box) {
+    const Arrays s(stream);
+    if (count < 2 * kParallelFilterRays) return filter_sequential(s, begin, begin + count, box);
+    // Each fixed block is partitioned on its own; then the rejected rays left of the total
+    // split point swap places with the passing rays right of it, the k-th with the k-th.
+    const std::size_t blocks = (count + kParallelFilterRays - 1) / kParallelFilterRays;
+    std::vector<std::size_t> passed(blocks);
+    const auto block_begin = [&](std::size_t b) { return begin + b * kParallelFilterRays; };
+    const auto block_end = [&](std::size_t b) {
+        return std::min(begin + count, block_begin(b) + kParallelFilterRays);
+    };
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        passed[b] = filter_sequential(s, block_begin(b), block_end(b), box);
+    });
+    std::size_t total = 0;
+    for (const std::size_t p : passed) total += p;
+    const std::size_t split = begin + total;
+    std::vector<Run> rejected_left, passed_right;
+    std::size_t misplaced_left = 0, misplaced_right = 0;
+    for (std::size_t b = 0; b < blocks; ++b) {
+        const std::size_t mid = block_begin(b) + passed[b];
+        if (mid < split) {
+            const std::size_t n = std::min(block_end(b), split) - mid;
+            rejected_left.push_back({mid, n, misplaced_left});
+            misplaced_left += n;
+        }
+        if (mid > split) {
+            const std::size_t start = std::max(block_begin(b), split);
+            passed_right.push_back({start, mid - start, misplaced_right});
+            misplaced_right += mid - start;
+        }
+    }
+    assert(misplaced_left == misplaced_right);
+    const std::size_t chunk = kParallelFilterRays;
+    tbb::parallel_for(std::size_t(0), (misplaced_left + chunk - 1) / chunk, [&](std::size_t c) {
+        swap_misplaced(s, rejected_left, passed_right, c * chunk,
+                       std::min(misplaced_left, (c + 1) * chunk));
+    });
+    return total;
+}
+
+}  // namespace edacrt

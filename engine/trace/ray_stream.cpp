@@ -1,0 +1,45 @@
+#include "trace/ray_stream.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cstdlib>
+#include <new>
+
+namespace edacrt {
+
+void RayStreamStorage::FreeAligned::operator()(float* p) const { std::free(p); }
+
+RayStream RayStreamStorage::fill(std::span<const Ray> rays) {
+    const std::size_t n = rays.size();
+    if (n > capacity_) {
+        // Each array starts on a 64-byte line: capacities are multiples of 16 floats.
+        const std::size_t capacity = (n + 15) / 16 * 16;
+        data_.reset(
+            static_cast<float*>(std::aligned_alloc(64, capacity * RayStream::kBytesPerRay)));
+        if (!data_) throw std::bad_alloc();
+        capacity_ = capacity;
+    }
+    float* base = data_.get();
+    const auto array = [&](int k) { return base + std::size_t(k) * capacity_; };
+    const RayStream s{{array(0), array(1), array(2)},
+                      {array(3), array(4), array(5)},
+                      array(6),
+                      array(7),
+                      reinterpret_cast<std::uint32_t*>(array(8))};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Ray& ray = rays[i];
+            for (int k = 0; k < 3; ++k) {
+                s.org[k][i] = ray.org[k];
+                // 1/dir is +inf or -inf for a +0 or -0 component (make_slab_ray)
+                s.inv_dir[k][i] = 1.0f / ray.dir[k];
+            }
+            s.tmin[i] = ray.tmin;
+            s.t_far[i] = ray.tmax;
+            s.id[i] = std::uint32_t(i);
+        }
+    });
+    return s;
+}
+
+}  // namespace edacrt

@@ -1,0 +1,52 @@
+#pragma once
+// The rays of one divide-and-conquer batch as a structure of arrays. The recursion partitions
+// the stream in place, so every node's rays are one contiguous range that the kernels load
+// eight at a time (gathers by ray index were slower than scalar code on AVX2 machines).
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "geometry/ray.h"
+#include "geometry/ray_box.h"
+
+namespace edacrt {
+
+/// Views of the stream's arrays: what the filter needs (the slab ray and the current search
+/// distance) plus the ray's index in the batch, which travels with it.
+struct RayStream {
+    float* org[3];
+    float* inv_dir[3];
+    float* tmin;
+    float* t_far;  // the closest hit so far; -inf once an any-hit ray is done, which removes it
+                   // from every later filter and leaf
+    std::uint32_t* id;
+
+    /// Bytes per ray: six floats of the slab ray, tmin, t_far and the id.
+    static constexpr std::size_t kBytesPerRay = 9 * 4;
+
+    SlabRay slab_ray(std::size_t i) const {
+        return {{org[0][i], org[1][i], org[2][i]},
+                {inv_dir[0][i], inv_dir[1][i], inv_dir[2][i]},
+                tmin[i],
+                t_far[i]};
+    }
+};
+
+/// The storage behind a RayStream, kept between batches so that a batch no larger than the
+/// last one allocates nothing.
+class RayStreamStorage {
+  public:
+    /// Fills the stream with `rays` in order (in parallel), t_far = tmax, and returns it.
+    RayStream fill(std::span<const Ray> rays);
+    std::size_t bytes() const { return capacity_ * RayStream::kBytesPerRay; }
+
+  private:
+    struct FreeAligned {
+        void operator()(float* p) const;
+    };
+    std::unique_ptr<float[], FreeAligned> data_;
+    std::size_t capacity_ = 0;
+};
+
+}  // namespace edacrt

@@ -1,0 +1,247 @@
+// The AVX2 kernels against the scalar tests they replace, bit for bit, on random and
+// adversarial inputs: the slab test on eight lanes (intersect_box8), the triangle test on
+// eight triangles (intersect_triangle8: what it decides must be what intersect_triangle
+// decides, and it may hand any lane back), and the in-place filter (filter_rays), sequential
+// and in parallel blocks.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "geometry/ray_box8.h"
+#include "geometry/triangle8.h"
+#include "trace/ray_filter.h"
+#include "trace/ray_stream.h"
+
+namespace edacrt {
+namespace {
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Coordinates that stress the tests: zeros of both signs, values on a small lattice (so
+/// origins land on box planes and corners coincide), tiny, huge and ordinary ones.
+float awkward(std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    switch (rng() % 8) {
+        case 0:
+            return 0.0f;
+        case 1:
+            return -0.0f;
+        case 2:
+            return float(int(rng() % 5) - 2);  // lattice: planes, shared corners
+        case 3:
+            return unit(rng) * 1e-30f;
+        case 4:
+            return unit(rng) * 1e30f;
+        case 5:
+            return unit(rng) * 1e-6f + 1.0f;
+        default:
+            return unit(rng) * 4.0f;
+    }
+}
+
+glm::vec3 awkward3(std::mt19937& rng) { return {awkward(rng), awkward(rng), awkward(rng)}; }
+
+Ray awkward_ray(std::mt19937& rng) {
+    Ray ray;
+    ray.org = awkward3(rng);
+    do ray.dir = awkward3(rng);
+    while (ray.dir == glm::vec3(0.0f));
+    ray.tmin = rng() % 4 == 0 ? std::abs(awkward(rng)) : 0.0f;
+    ray.tmax = rng() % 3 == 0 ? kInfinity : ray.tmin + std::abs(awkward(rng));
+    return ray;
+}
+
+Aabb awkward_box(std::mt19937& rng) {
+    if (rng() % 16 == 0) return Aabb{};  // empty, as a padding lane
+    Aabb box;
+    box.extend(awkward3(rng));
+    box.extend(rng() % 8 == 0 ? box.lo : awkward3(rng));  // some boxes are flat or points
+    return box;
+}
+
+TEST(SimdKernels, SlabTestOnEightLanesIsTheScalarTestBitForBit) {
+    std::mt19937 rng(7);
+    int passed = 0;
+    for (int round = 0; round < 20000; ++round) {
+        Ray rays[8];
+        Aabb boxes[8];
+        float t_far[8];
+        alignas(32) float lane[14][8];
+        for (int l = 0; l < 8; ++l) {
+            rays[l] = awkward_ray(rng);
+            boxes[l] = awkward_box(rng);
+            t_far[l] = rng() % 16 == 0 ? -kInfinity : rays[l].tmax;  // a finished any-hit ray
+            const SlabRay s = make_slab_ray(rays[l]);
+            for (int k = 0; k < 3; ++k) {
+                lane[k][l] = s.org[k];
+                lane[3 + k][l] = s.inv_dir[k];
+                lane[8 + k][l] = boxes[l].lo[k];
+                lane[11 + k][l] = boxes[l].hi[k];
+            }
+            lane[6][l] = s.tmin;
+            lane[7][l] = t_far[l];
+        }
+        const auto v = [&](int k) { return _mm256_load_ps(lane[k]); };
+        const SlabRay8 ray8{{v(0), v(1), v(2)}, {v(3), v(4), v(5)}, v(6), v(7)};
+        const Aabb8 box8{{v(8), v(9), v(10)}, {v(11), v(12), v(13)}};
+        __m256 entry8;
+        const unsigned mask = unsigned(_mm256_movemask_ps(intersect_box8(ray8, box8, entry8)));
+        alignas(32) float entries[8];
+        _mm256_store_ps(entries, entry8);
+        for (int l = 0; l < 8; ++l) {
+            float entry;
+            const bool hit = intersect_box(make_slab_ray(rays[l]), boxes[l], t_far[l], entry);
+            ASSERT_EQ(hit, ((mask >> l) & 1) != 0) << "round " << round << " lane " << l;
+            ASSERT_TRUE(same_bits(entry, entries[l])) << entry << " vs " << entries[l];
+            passed += hit;
+        }
+    }
+    EXPECT_GT(passed, 10000);  // both outcomes are well represented
+    EXPECT_LT(passed, 150000);
+}
+
+/// Triangles that stress the triangle test: shared lattice corners (rays through edges and
+/// vertices), slivers, degenerate ones, huge and tiny ones.
+Triangle awkward_triangle(std::mt19937& rng) {
+    Triangle tri{awkward3(rng), awkward3(rng), awkward3(rng)};
+    switch (rng() % 6) {
+        case 0:
+            tri.p2 = tri.p1;
+            break;  // degenerate
+        case 1:
+            tri.p2 = tri.p0 + (tri.p1 - tri.p0) * 0.5f + 1e-6f;
+            break;  // sliver
+        default:
+            break;
+    }
+    return tri;
+}
+
+TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
+    std::mt19937 rng(11);
+    int accepted = 0, rejected = 0, handed_back = 0;
+    for (int round = 0; round < 40000; ++round) {
+        // Rays aimed at a triangle's corner, edge or inside, or anywhere.
+        TriangleBlock8 block;
+        Triangle tris[8];
+        for (int l = 0; l < 8; ++l) {
+            tris[l] = awkward_triangle(rng);
+            const glm::vec3* corners[3] = {&tris[l].p0, &tris[l].p1, &tris[l].p2};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) block.p[c][a][l] = (*corners[c])[a];
+        }
+        Ray ray = awkward_ray(rng);
+        const Triangle& target = tris[rng() % 8];
+        const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
+        const glm::vec3 aim =
+            target.p0 + w0 * (target.p1 - target.p0) + w1 * (target.p2 - target.p0);
+        if (rng() % 2 && aim != ray.org) ray.dir = aim - ray.org;
+        const WatertightRay wray = make_watertight_ray(ray);
+        const unsigned valid = rng() % 4 == 0 ? unsigned(rng() % 256) : 0xffu;
+        TriangleLanes8 lanes;
+        intersect_triangle8(wray, block, valid, ray.tmin, ray.tmax, lanes);
+        ASSERT_EQ(lanes.accepted & lanes.scalar, 0u);
+        ASSERT_EQ((lanes.accepted | lanes.scalar) & ~valid, 0u);
+        for (int l = 0; l < 8; ++l) {
+            if (!((valid >> l) & 1) || ((lanes.scalar >> l) & 1)) {
+                handed_back += (lanes.scalar >> l) & 1;
+                continue;
+            }
+            TriangleHit hit;
+            const bool scalar = intersect_triangle(wray, tris[l], ray.tmin, ray.tmax, hit);
+            ASSERT_EQ(scalar, ((lanes.accepted >> l) & 1) != 0) << "round " << round;
+            if (!scalar) {
+                ++rejected;
+                continue;
+            }
+            ++accepted;
+            ASSERT_TRUE(same_bits(hit.t, lanes.t[l]));
+            ASSERT_TRUE(same_bits(hit.u, lanes.v[l] * lanes.inv_det[l]));
+            ASSERT_TRUE(same_bits(hit.v, lanes.w[l] * lanes.inv_det[l]));
+        }
+    }
+    // The float path decides most lanes; the awkward ones go back to the scalar test.
+    EXPECT_GT(accepted, 2000);
+    EXPECT_GT(rejected, 100000);
+    EXPECT_GT(handed_back, 1000);
+}
+
+/// A stream of `n` awkward rays, some already finished (t_far = -inf).
+struct TestStream {
+    RayStreamStorage storage;
+    std::vector<Ray> rays;
+    RayStream stream;
+    TestStream(std::size_t n, std::mt19937& rng) {
+        for (std::size_t i = 0; i < n; ++i) rays.push_back(awkward_ray(rng));
+        stream = storage.fill(rays);
+        for (std::size_t i = 0; i < n; ++i)
+            if (rng() % 16 == 0) stream.t_far[i] = -kInfinity;
+    }
+    bool passes(std::uint32_t id, float t_far, const Aabb& box) const {
+        float entry;
+        return intersect_box(make_slab_ray(rays[id]), box, t_far, entry);
+    }
+};
+
+TEST(SimdKernels, FilterMovesExactlyThePassingRaysToTheFrontAndKeepsEveryRayWhole) {
+    std::mt19937 rng(3);
+    for (const std::size_t n : {0, 1, 7, 8, 15, 16, 17, 23, 24, 31, 100, 1000, 32768, 70001}) {
+        for (int round = 0; round < (n > 1000 ? 3 : 40); ++round) {
+            TestStream s(n, rng);
+            // A box around part of the scene, or all of it, or none.
+            Aabb box = awkward_box(rng);
+            if (round % 10 == 1) box = {glm::vec3(-1e38f), glm::vec3(1e38f)};
+            std::vector<float> t_far(n);
+            for (std::size_t i = 0; i < n; ++i) t_far[s.stream.id[i]] = s.stream.t_far[i];
+            const std::size_t begin = n > 2 ? 1 : 0, count = n - begin - (n > 2 ? 1 : 0);
+            const std::size_t passed = filter_rays(s.stream, begin, count, box);
+            std::vector<bool> seen(n, false);
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::uint32_t id = s.stream.id[i];
+                ASSERT_LT(id, n);
+                ASSERT_FALSE(seen[id]) << "ray " << id << " twice";
+                seen[id] = true;
+                // Every field moved with its id.
+                const SlabRay slab = make_slab_ray(s.rays[id]);
+                const SlabRay moved = s.stream.slab_ray(i);
+                for (int k = 0; k < 3; ++k) {
+                    ASSERT_TRUE(same_bits(moved.org[k], slab.org[k]));
+                    ASSERT_TRUE(same_bits(moved.inv_dir[k], slab.inv_dir[k]));
+                }
+                ASSERT_EQ(moved.tmin, slab.tmin);
+                ASSERT_TRUE(same_bits(s.stream.t_far[i], t_far[id]));
+                if (i < begin || i >= begin + count) {
+                    ASSERT_EQ(id, i) << "a ray outside the range moved";
+                    continue;
+                }
+                ASSERT_EQ(s.passes(id, t_far[id], box), i < begin + passed)
+                    << "n " << n << " position " << i;
+            }
+        }
+    }
+}
+
+TEST(SimdKernels, ParallelFilterGivesTheSameOrderForAnyThreadCount) {
+    std::mt19937 rng(5);
+    TestStream a(100000, rng);
+    std::mt19937 same(5);
+    TestStream b(100000, same);
+    const Aabb box{glm::vec3(-1.0f), glm::vec3(1.5f)};
+    std::size_t passed_a, passed_b;
+    {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        passed_a = filter_rays(a.stream, 0, 100000, box);
+    }
+    passed_b = filter_rays(b.stream, 0, 100000, box);
+    EXPECT_EQ(passed_a, passed_b);
+    EXPECT_GT(passed_a, 1000u);
+    EXPECT_TRUE(std::equal(a.stream.id, a.stream.id + 100000, b.stream.id));
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -212,6 +212,7 @@ TEST(SimdKernels, FilterMovesExactlyThePassingRaysToTheFrontAndKeepsEveryRayWhol
                 for (int k = 0; k < 3; ++k) {
                     ASSERT_TRUE(same_bits(moved.org[k], slab.org[k]));
                     ASSERT_TRUE(same_bits(moved.inv_dir[k], slab.inv_dir[k]));
+                    ASSERT_TRUE(same_bits(s.stream.dir[k][i], s.rays[id].dir[k]));
                 }
                 ASSERT_EQ(moved.tmin, slab.tmin);
                 ASSERT_TRUE(same_bits(s.stream.t_far[i], t_far[id]));

@@ -43,24 +43,22 @@ inline __m256 cmp(__m256 a, __m256 b) {
 
 }  // namespace simd8
 
-/// The float path of intersect_triangle for `ray` against the lanes of `valid` in `tris`.
-[[gnu::always_inline]] inline void intersect_triangle8(const WatertightRay& ray,
-                                                       const TriangleBlock8& tris, unsigned valid,
-                                                       float tmin, float tmax,
-                                                       TriangleLanes8& out) {
-    using namespace simd8;
-    // shear_triangle: each corner relative to the origin, in the ray's frame.
-    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
-    const __m256 sx = set(ray.sx), sy = set(ray.sy), sz = set(ray.sz);
+/// Eight ray/triangle pairs in their rays' frames (shear_triangle's x, y, z of the corners
+/// A, B, C), with the rays' |dir[kx]|, |dir[ky]| for the distance error bound.
+struct ShearedTriangles8 {
     __m256 x[3], y[3], z[3];
-    for (int c = 0; c < 3; ++c) {
-        const __m256 rx = sub(_mm256_load_ps(tris.p[c][kx]), set(ray.org[kx]));
-        const __m256 ry = sub(_mm256_load_ps(tris.p[c][ky]), set(ray.org[ky]));
-        const __m256 rz = sub(_mm256_load_ps(tris.p[c][kz]), set(ray.org[kz]));
-        x[c] = sub(rx, mul(sx, rz));
-        y[c] = sub(ry, mul(sy, rz));
-        z[c] = mul(sz, rz);
-    }
+    __m256 shear_x, shear_y;
+};
+
+/// The float path of intersect_triangle from the sheared corners on: the lanes of `valid` it
+/// decides and those it hands back.
+[[gnu::always_inline]] inline void decide_triangles8(const ShearedTriangles8& s, __m256 tmin,
+                                                     __m256 tmax, unsigned valid,
+                                                     TriangleLanes8& out) {
+    using namespace simd8;
+    const __m256(&x)[3] = s.x;
+    const __m256(&y)[3] = s.y;
+    const __m256(&z)[3] = s.z;
     // Edge functions U = C x B, V = A x C, W = B x A, each as the difference of two products.
     const __m256 pu = mul(x[2], y[1]), qu = mul(y[2], x[1]);
     const __m256 pv = mul(x[0], y[2]), qv = mul(y[0], x[2]);
@@ -88,8 +86,8 @@ inline __m256 cmp(__m256 a, __m256 b) {
     const float gamma2 = rounding_gamma<float>(2), gamma3 = rounding_gamma<float>(3),
                 gamma5 = rounding_gamma<float>(5);
     const __m256 delta_z = mul(set(gamma3), max_z);
-    const __m256 delta_x = mul(set(gamma5), add(max_x, mul(set(std::abs(ray.dir[kx])), max_z)));
-    const __m256 delta_y = mul(set(gamma5), add(max_y, mul(set(std::abs(ray.dir[ky])), max_z)));
+    const __m256 delta_x = mul(set(gamma5), add(max_x, mul(s.shear_x, max_z)));
+    const __m256 delta_y = mul(set(gamma5), add(max_y, mul(s.shear_y, max_z)));
     const __m256 delta_e = mul(
         set(2.0f),
         add(add(mul(mul(set(gamma2), max_x), max_y), mul(delta_y, max_x)), mul(delta_x, max_y)));
@@ -104,7 +102,7 @@ inline __m256 cmp(__m256 a, __m256 b) {
     const __m256 error = _mm256_blendv_ps(
         set(kInfinity), add(_mm256_div_ps(numerator, denominator), mul(set(gamma2), abs(t))),
         cmp<_CMP_GT_OQ>(denominator, zero));
-    const __m256 lo = set(tmin), hi = set(tmax);
+    const __m256 lo = tmin, hi = tmax;
     const __m256 near_end = add(t, error);
     const __m256 rejected = any(cmp<_CMP_LE_OQ>(near_end, zero), cmp<_CMP_LT_OQ>(near_end, lo),
                                 cmp<_CMP_GT_OQ>(sub(t, error), hi));
@@ -124,6 +122,28 @@ inline __m256 cmp(__m256 a, __m256 b) {
         _mm256_store_ps(out.w, w);
         _mm256_store_ps(out.inv_det, inv_det);
     }
+}
+
+/// One ray against eight triangles: the triangles' corners in the ray's frame.
+[[gnu::always_inline]] inline void intersect_triangle8(const WatertightRay& ray,
+                                                       const TriangleBlock8& tris, unsigned valid,
+                                                       float tmin, float tmax,
+                                                       TriangleLanes8& out) {
+    using namespace simd8;
+    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+    const __m256 sx = set(ray.sx), sy = set(ray.sy), sz = set(ray.sz);
+    ShearedTriangles8 s;
+    for (int c = 0; c < 3; ++c) {  // shear_triangle
+        const __m256 rx = sub(_mm256_load_ps(tris.p[c][kx]), set(ray.org[kx]));
+        const __m256 ry = sub(_mm256_load_ps(tris.p[c][ky]), set(ray.org[ky]));
+        const __m256 rz = sub(_mm256_load_ps(tris.p[c][kz]), set(ray.org[kz]));
+        s.x[c] = sub(rx, mul(sx, rz));
+        s.y[c] = sub(ry, mul(sy, rz));
+        s.z[c] = mul(sz, rz);
+    }
+    s.shear_x = set(std::abs(ray.dir[kx]));
+    s.shear_y = set(std::abs(ray.dir[ky]));
+    decide_triangles8(s, set(tmin), set(tmax), valid, out);
 }
 
 }  // namespace edacrt

@@ -38,10 +38,9 @@ struct EdacrtScene {
     Aabb box;
 };
 
-/// One batch: the stream the recursion partitions, and the input rays and output hits, indexed
-/// by the ray's number (its id in the stream).
+/// One batch: the stream the recursion partitions, and the hits, indexed by the ray's number
+/// (its id in the stream).
 struct RayBatch {
-    const Ray* rays;  // the leaves take tmin and the exact direction from here
     RayStream stream;
     Hit* hits;
 };
@@ -378,8 +377,8 @@ class Recursion {
                       : s);
             obs_.sampled_ray(stream.id[i], tests_per_sample);
             const SlabRay8 ray = broadcast(stream.slab_ray(i), stream.t_far[i]);
-            const __m256 left_on_tie = _mm256_castsi256_ps(
-                _mm256_set1_epi32(std::signbit(stream.inv_dir[axis][i]) ? 0 : -1));
+            const __m256 left_on_tie =
+                _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
             for (int b = 0; b < blocks; ++b) {
                 __m256 left_entry, right_entry;
                 const __m256 left = intersect_box8(ray, left_boxes_[b], left_entry);
@@ -428,11 +427,9 @@ class Recursion {
     }
 
     std::size_t count_negative(const Node& node, int axis) const {
-        // 1/dir keeps the sign of dir, also for -0
-        const float* inv_dir = batch_.stream.inv_dir[axis] + node.ray_begin;
+        const float* dir = batch_.stream.dir[axis] + node.ray_begin;
         const auto count = [&](const tbb::blocked_range<std::size_t>& range, std::size_t n) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i)
-                n += std::signbit(inv_dir[i]);
+            for (std::size_t i = range.begin(); i != range.end(); ++i) n += std::signbit(dir[i]);
             return n;
         };
         const tbb::blocked_range<std::size_t> all(0, node.ray_count, kParallelItems);
@@ -440,62 +437,14 @@ class Recursion {
         return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>());
     }
 
-    /// Brute force: every ray against every triangle of the node, eight triangles at a time,
-    /// in parallel over rays when the node is large (rays are independent). An any-hit ray
-    /// that is already done (passed down unfiltered) is skipped.
+    /// Brute force: every ray against every triangle of the node, one ray against eight
+    /// triangles at a time, in parallel over rays when the node is large (rays are
+    /// independent). An any-hit ray that is already done (passed down unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
-        const std::size_t blocks = (node.tri_count + 7) / 8;
-        tri_blocks_.resize(std::max(tri_blocks_.size(), blocks));
-        for (std::size_t k = 0; k < blocks * 8; ++k) {
-            TriangleBlock8& block = tri_blocks_[k / 8];
-            const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
-            const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
-        }
-        const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
-        const RayStream& stream = batch_.stream;
+        gather_triangle_blocks(node);
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                float& t_far = stream.t_far[i];
-                if (Q == Query::any && t_far == -kInfinity) continue;
-                const std::uint32_t r = stream.id[i];
-                const float tmin = batch_.rays[r].tmin;
-                const WatertightRay wray = make_watertight_ray(batch_.rays[r]);
-                std::size_t tested = node.tri_count;
-                for (std::size_t b = 0; b < blocks; ++b) {
-                    TriangleLanes8 lanes;
-                    intersect_triangle8(wray, tri_blocks_[b], b + 1 < blocks ? 0xffu : last_valid,
-                                        tmin, t_far, lanes);
-                    // In triangle order, as the scalar loop: t_far shrinks with each hit.
-                    for (unsigned todo = lanes.accepted | lanes.scalar; todo; todo &= todo - 1) {
-                        const int lane = std::countr_zero(todo);
-                        const std::uint32_t t = node.tris[8 * b + std::size_t(lane)];
-                        TriangleHit hit;
-                        if ((lanes.scalar >> lane) & 1) {
-                            if (!intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit))
-                                continue;
-                        } else {
-                            if (!(lanes.t[lane] <= t_far)) continue;
-                            hit = {lanes.t[lane], lanes.v[lane] * lanes.inv_det[lane],
-                                   lanes.w[lane] * lanes.inv_det[lane]};
-                        }
-                        batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
-                        obs_.hit(r, node);
-                        if constexpr (Q == Query::any) {
-                            t_far = -kInfinity;
-                            tested = 8 * b + std::size_t(lane) + 1;
-                            b = blocks;
-                            break;
-                        }
-                        t_far = hit.t;
-                    }
-                }
-                obs_.leaf_ray(r, std::uint32_t(tested));
-                tests += tested;
-            }
-            return tests;
+            return tests + trace_rays(node, range.begin(), range.end());
         };
         const tbb::blocked_range<std::size_t> all(node.ray_begin, node.ray_begin + node.ray_count,
                                                   16);
@@ -505,6 +454,75 @@ class Recursion {
                 : tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
         totals_.ray_triangle_tests += tests;
         obs_.leaf(visit, node, tests);
+    }
+
+    /// The leaf's triangles as blocks of eight for trace_rays.
+    void gather_triangle_blocks(const Node& node) {
+        const std::size_t blocks = (node.tri_count + 7) / 8;
+        tri_blocks_.resize(std::max(tri_blocks_.size(), blocks));
+        for (std::size_t k = 0; k < blocks * 8; ++k) {
+            TriangleBlock8& block = tri_blocks_[k / 8];
+            const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
+            const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
+        }
+    }
+
+    /// The rays at stream positions [begin, end), one at a time, against eight triangles at a
+    /// time (the blocks of gather_triangle_blocks). Returns the triangle tests.
+    std::uint64_t trace_rays(const Node& node, std::size_t begin, std::size_t end) {
+        const RayStream& stream = batch_.stream;
+        const std::size_t blocks = (node.tri_count + 7) / 8;
+        const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
+        std::uint64_t tests = 0;
+        for (std::size_t i = begin; i != end; ++i) {
+            float& t_far = stream.t_far[i];
+            if (Q == Query::any && t_far == -kInfinity) continue;
+            const std::uint32_t r = stream.id[i];
+            const float tmin = stream.tmin[i];
+            const WatertightRay wray = make_watertight_ray(stream.ray(i));
+            std::size_t tested = node.tri_count;
+            for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
+                TriangleLanes8 lanes;
+                intersect_triangle8(wray, tri_blocks_[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
+                                    t_far, lanes);
+                // In triangle order, as the scalar loop: t_far shrinks with each hit.
+                for (unsigned todo = lanes.accepted | lanes.scalar; todo; todo &= todo - 1) {
+                    const int lane = std::countr_zero(todo);
+                    const std::size_t k = 8 * b + std::size_t(lane);
+                    TriangleHit hit;
+                    if (!resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit)) continue;
+                    record_hit(node, r, node.tris[k], hit);
+                    if constexpr (Q == Query::any) {
+                        t_far = -kInfinity;
+                        tested = k + 1;
+                        break;
+                    }
+                    t_far = hit.t;
+                }
+            }
+            obs_.leaf_ray(r, std::uint32_t(tested));
+            tests += tested;
+        }
+        return tests;
+    }
+
+    /// A lane of the 8-wide test: the float path's hit if within the current t_far, or the
+    /// scalar test's verdict where the float path handed the lane back.
+    bool resolve(const TriangleLanes8& lanes, int lane, const WatertightRay& wray, std::uint32_t t,
+                 float tmin, float t_far, TriangleHit& hit) const {
+        if ((lanes.scalar >> lane) & 1)
+            return intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit);
+        if (!(lanes.t[lane] <= t_far)) return false;
+        hit = {lanes.t[lane], lanes.v[lane] * lanes.inv_det[lane],
+               lanes.w[lane] * lanes.inv_det[lane]};
+        return true;
+    }
+
+    void record_hit(const Node& node, std::uint32_t r, std::uint32_t t, const TriangleHit& hit) {
+        batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+        obs_.hit(r, node);
     }
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.

@@ -51,7 +51,7 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
         for (std::size_t i = range.begin(); i != range.end(); ++i)
             batch_.tris[i] = std::uint32_t(i);
     });
-    const RayBatch batch{rays.data(), batch_.rays.fill(rays), hits.data()};
+    const RayBatch batch{batch_.rays.fill(rays), hits.data()};
 
     // One recursion from the scene box over the rays that reach it.
     const auto trace = [&](auto& observer) {

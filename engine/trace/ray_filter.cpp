@@ -40,9 +40,9 @@ constexpr std::array<std::uint64_t, 256> kPassFirst = make_pass_first();
 struct Arrays {
     float* a[kArrays];
     explicit Arrays(const RayStream& s)
-        : a{s.org[0],     s.org[1],     s.org[2],
-            s.inv_dir[0], s.inv_dir[1], s.inv_dir[2],
-            s.tmin,       s.t_far,      reinterpret_cast<float*>(s.id)} {}
+        : a{s.org[0], s.org[1], s.org[2],
+            s.dir[0], s.dir[1], s.dir[2],
+            s.tmin,   s.t_far,  reinterpret_cast<float*>(s.id)} {}
 };
 
 struct Block {
@@ -56,14 +56,21 @@ Block load(const Arrays& s, std::size_t i) {
 }
 
 unsigned passes(const Block& b, const Aabb8& box) {
-    const SlabRay8 ray{{b.v[0], b.v[1], b.v[2]}, {b.v[3], b.v[4], b.v[5]}, b.v[6], b.v[7]};
+    const __m256 one = _mm256_set1_ps(1.0f);  // make_slab_ray's 1/dir, with its +-inf for +-0
+    const SlabRay8 ray{
+        {b.v[0], b.v[1], b.v[2]},
+        {_mm256_div_ps(one, b.v[3]), _mm256_div_ps(one, b.v[4]), _mm256_div_ps(one, b.v[5])},
+        b.v[6],
+        b.v[7]};
     __m256 entry;
     return unsigned(_mm256_movemask_ps(intersect_box8(ray, box, entry)));
 }
 
 bool passes(const Arrays& s, std::size_t i, const Aabb& box) {
-    const SlabRay ray{
-        {s.a[0][i], s.a[1][i], s.a[2][i]}, {s.a[3][i], s.a[4][i], s.a[5][i]}, s.a[6][i], 0.0f};
+    const SlabRay ray = make_slab_ray({{s.a[0][i], s.a[1][i], s.a[2][i]},
+                                       {s.a[3][i], s.a[4][i], s.a[5][i]},
+                                       s.a[6][i],
+                                       s.a[7][i]});
     float entry;
     return intersect_box(ray, box, s.a[7][i], entry);
 }

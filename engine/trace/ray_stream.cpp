@@ -31,8 +31,7 @@ RayStream RayStreamStorage::fill(std::span<const Ray> rays) {
             const Ray& ray = rays[i];
             for (int k = 0; k < 3; ++k) {
                 s.org[k][i] = ray.org[k];
-                // 1/dir is +inf or -inf for a +0 or -0 component (make_slab_ray)
-                s.inv_dir[k][i] = 1.0f / ray.dir[k];
+                s.dir[k][i] = ray.dir[k];
             }
             s.tmin[i] = ray.tmin;
             s.t_far[i] = ray.tmax;

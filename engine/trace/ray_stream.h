@@ -12,25 +12,28 @@
 
 namespace edacrt {
 
-/// Views of the stream's arrays: what the filter needs (the slab ray and the current search
-/// distance) plus the ray's index in the batch, which travels with it.
+/// Views of the stream's arrays: the ray and its current search distance, plus its index in
+/// the batch, which travels with it. The direction itself, not its inverse, so that the leaves
+/// need nothing else (the filter divides, which is hidden by its memory traffic).
 struct RayStream {
     float* org[3];
-    float* inv_dir[3];
+    float* dir[3];
     float* tmin;
     float* t_far;  // the closest hit so far; -inf once an any-hit ray is done, which removes it
                    // from every later filter and leaf
     std::uint32_t* id;
 
-    /// Bytes per ray: six floats of the slab ray, tmin, t_far and the id.
+    /// Bytes per ray: origin, direction, tmin, t_far and the id.
     static constexpr std::size_t kBytesPerRay = 9 * 4;
 
-    SlabRay slab_ray(std::size_t i) const {
+    /// The ray as traced, with tmax = its current t_far.
+    Ray ray(std::size_t i) const {
         return {{org[0][i], org[1][i], org[2][i]},
-                {inv_dir[0][i], inv_dir[1][i], inv_dir[2][i]},
+                {dir[0][i], dir[1][i], dir[2][i]},
                 tmin[i],
                 t_far[i]};
     }
+    SlabRay slab_ray(std::size_t i) const { return make_slab_ray(ray(i)); }
 };
 
 /// The storage behind a RayStream, kept between batches so that a batch no larger than the

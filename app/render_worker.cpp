@@ -2,6 +2,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/renderer.h"
@@ -137,7 +138,12 @@ void RenderWorker::run() {
                 renderer->film().passes() == 0 ? std::make_shared<TraceDetail>() : nullptr;
             const auto start = std::chrono::steady_clock::now();
             bool done = false;
-            arena->execute([&] { done = renderer->render_pass(&cancel_, captured.get()); });
+            const int passes = renderer->film().passes();
+            const int samples = passes == 0 ? 1
+                                            : std::clamp(request.spp_target - passes, 1,
+                                                         request.settings.samples_per_pass);
+            arena->execute(
+                [&] { done = renderer->render_pass(&cancel_, captured.get(), samples); });
             if (!done) continue;  // cancelled: a new request is waiting
             seconds +=
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

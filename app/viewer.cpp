@@ -75,7 +75,11 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
     r.settings.max_depth = s.ui.max_depth;
     r.settings.ao_samples = s.ui.ao_samples;
     r.settings.seed = std::uint32_t(s.ui.seed);
-    r.settings.tile_pixels = 1 << 16;  // small wavefronts: a change cancels within a batch
+    // The first pass renders one sample; once the view is still, passes take several samples
+    // of every pixel as one wavefront (large batches), in wavefronts small enough that a
+    // change cancels within a fraction of a second.
+    r.settings.samples_per_pass = 4;
+    r.settings.wavefront_paths = std::size_t(1) << 18;
     r.spp_target = s.ui.spp_target;
     r.threads = s.ui.threads;
     return r;

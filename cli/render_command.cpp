@@ -32,6 +32,8 @@ struct RenderOptions {
     std::string tone_map = "clamp";
     std::vector<float> sky;
     CameraOptions camera;
+    RenderOptions() { settings.samples_per_pass = 4; }
+    bool time_budget_only() const { return time_budget > 0.0 && !spp_given; }
 };
 
 /// Bytes per pixel the command holds besides the renderer's: the reference, and the larger of
@@ -50,6 +52,8 @@ void run(const RenderOptions& o) {
     RenderSettings settings = o.settings;
     settings.integrator = parse_integrator(o.integrator);
     settings.primary = parse_primary_shading(o.primary);
+    if (!o.time_budget_only())
+        settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
     if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
     validate(settings);
     check_render_memory(settings, command_bytes_per_pixel(o));
@@ -74,13 +78,14 @@ void run(const RenderOptions& o) {
     Renderer renderer(scene, *tracer, camera, settings);
     for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";
     // With only a time budget, render until it is spent.
-    const int spp = o.time_budget > 0.0 && !o.spp_given ? 1 << 20 : o.spp;
+    const int spp = o.time_budget_only() ? 1 << 20 : o.spp;
     TraceDetail detail;
     nlohmann::json passes = nlohmann::json::array();
     double elapsed = 0.0;  // rendering only: comparing with the reference is not counted
     while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget)) {
         start = std::chrono::steady_clock::now();
-        renderer.render_pass();
+        renderer.render_pass(nullptr, nullptr,
+                             std::min(settings.samples_per_pass, spp - renderer.film().passes()));
         elapsed += seconds_since(start);
         nlohmann::json pass = {{"spp", renderer.film().passes()},
                                {"seconds", elapsed},
@@ -190,7 +195,13 @@ std::function<void()> add_render_command(CLI::App& app) {
     command->add_option("--sky", o.sky, "sky radiance R,G,B (scenes without emitters)")
         ->delimiter(',')
         ->expected(3);
-    command->add_option("--tile-pixels", s.tile_pixels, "pixels per wavefront")
+    command
+        ->add_option("--samples-per-pass", s.samples_per_pass,
+                     "samples per pixel traced together in one pass (at most --spp)")
+        ->capture_default_str();
+    command
+        ->add_option("--wavefront-paths", s.wavefront_paths,
+                     "paths per wavefront (0: the whole pass, within 1 GiB of wavefront state)")
         ->capture_default_str();
     command->add_option("--seed", s.seed, "sample seed")->capture_default_str();
     command->add_option("--exposure", o.exposure, "PNG: exposure in stops")->capture_default_str();

@@ -41,32 +41,45 @@ std::string refusal(const RenderSettings& settings, std::uint64_t extra = 0) {
     return "accepted";
 }
 
-TEST(RenderMemory, FilmSamplesAndOneTileOfWavefront) {
+TEST(RenderMemory, FilmSamplesAndOneWavefront) {
     RenderSettings settings;
     settings.width = 16384;
     settings.height = 16384;
     const std::uint64_t pixels = 16384ull * 16384ull;
-    // The film's double sums and the pass's float samples; the path tracer's tile.
-    const std::uint64_t per_pixel = render_memory_bytes(settings) / pixels;
-    EXPECT_EQ(per_pixel, 36u);
-    const std::uint64_t tile = render_memory_bytes(settings) - 36 * pixels;
-    EXPECT_EQ(tile % settings.tile_pixels, 0u);
-    EXPECT_GT(tile / settings.tile_pixels, 4 * sizeof(Ray));  // rays, next, shadow and batch
+    // The film's double sums and the pass's float samples; the path tracer's wavefront, here
+    // as many paths as fit the budget.
+    const std::uint64_t per_path = wavefront_bytes_per_path(settings);
+    EXPECT_GT(per_path, 4 * sizeof(Ray));  // rays, next, shadow and batch
+    const std::uint64_t wave = kWavefrontBudget / per_path;
+    EXPECT_EQ(wavefront_paths(settings, pixels), wave);
+    EXPECT_EQ(render_memory_bytes(settings), 36 * pixels + wave * per_path);
+    EXPECT_LE(wave * per_path, kWavefrontBudget);
     EXPECT_EQ(render_memory_bytes(settings, 24) - render_memory_bytes(settings), 24 * pixels);
-    // A small image is a single tile of its own size.
+    // Several samples per pass: a float sample each, the same wavefront.
+    settings.samples_per_pass = 4;
+    EXPECT_EQ(render_memory_bytes(settings), (24 + 4 * 12) * pixels + wave * per_path);
+    // A small image is one wavefront of all its paths; an explicit size is taken as given.
     settings.width = settings.height = 16;
-    EXPECT_EQ(render_memory_bytes(settings), 256 * (36 + tile / settings.tile_pixels));
+    EXPECT_EQ(wavefront_paths(settings, 4 * 256), 4u * 256u);
+    EXPECT_EQ(render_memory_bytes(settings), 256 * (24 + 4 * 12) + 4 * 256 * per_path);
+    settings.wavefront_paths = 100;
+    EXPECT_EQ(wavefront_paths(settings, 4 * 256), 100u);
+    EXPECT_EQ(wavefront_paths(settings, 50), 50u);
 }
 
-TEST(RenderMemory, AmbientOcclusionTilesShrinkWithTheirRays) {
+TEST(RenderMemory, AmbientOcclusionWavefrontsShrinkWithTheirRays) {
     RenderSettings settings;
     settings.integrator = Integrator::ao;
     settings.width = settings.height = 512;
     settings.ao_samples = 1024;
-    EXPECT_EQ(wavefront_tile_pixels(settings), settings.tile_pixels / 1024);
-    // About tile_pixels AO rays per batch, whatever ao_samples: well under a gigabyte here
-    // (the whole 512x512 image as one tile needed 35 GB).
+    settings.wavefront_paths = 1 << 18;
+    EXPECT_EQ(wavefront_paths(settings, 512 * 512), settings.wavefront_paths / 1024);
+    // About wavefront_paths AO rays per batch, whatever ao_samples: well under a gigabyte
+    // here (the whole 512x512 image as one wavefront needed 35 GB).
     EXPECT_LT(render_memory_bytes(settings), 100'000'000u);
+    // Whole passes stay within the budget too.
+    settings.wavefront_paths = 0;
+    EXPECT_LE(render_memory_bytes(settings), 512 * 512 * 36 + kWavefrontBudget);
 }
 
 TEST(RenderMemory, WhatCannotFitIsRefusedWithTheFigure) {
@@ -74,12 +87,12 @@ TEST(RenderMemory, WhatCannotFitIsRefusedWithTheFigure) {
     EXPECT_EQ(memory_limit().bytes, 100'000'000u);
     EXPECT_EQ(memory_limit().source, "EDACRT_MEMORY_LIMIT");
     RenderSettings settings;
-    settings.width = 4096;
-    settings.height = 2048;
+    settings.width = 2048;
+    settings.height = 1024;
     const std::uint64_t need = render_memory_bytes(settings);
-    EXPECT_EQ(refusal(settings), "a 4096x2048 path render needs about " +
+    EXPECT_EQ(refusal(settings), "a 2048x1024 path render needs about " +
                                      std::to_string((need + 500'000) / 1'000'000) +
-                                     " MB of memory (" + std::to_string(need / (4096 * 2048)) +
+                                     " MB of memory (" + std::to_string(need / (2048 * 1024)) +
                                      " bytes per pixel), more than the 100 MB of "
                                      "EDACRT_MEMORY_LIMIT; choose a smaller size");
     settings.width = settings.height = 512;

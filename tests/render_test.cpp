@@ -10,6 +10,7 @@
 #include "render/shading_scene.h"
 #include "scene/builtin_scenes.h"
 #include "trace/tracer.h"
+#include "util/error.h"
 
 namespace edacrt {
 namespace {
@@ -94,7 +95,7 @@ Image render_cornell(Method method, Integrator integrator, std::uint32_t seed, i
     settings.height = 32;
     settings.integrator = integrator;
     settings.seed = seed;
-    settings.tile_pixels = 700;  // several tiles, uneven
+    settings.wavefront_paths = 700;  // several wavefronts, uneven
     return render(scene, *scene.camera, settings, spp, method);
 }
 
@@ -115,6 +116,34 @@ TEST(Determinism, SameSeedSameImageForAnyThreadCountAndMethod) {
     }
     EXPECT_FALSE(render_cornell(Method::edacrt, Integrator::path, 8, 4).pixels ==
                  render_cornell(Method::edacrt, Integrator::path, 7, 4).pixels);
+}
+
+TEST(Determinism, PassesOfSeveralSamplesGiveTheImageOfOneSamplePasses) {
+    const Scene scene = make_builtin_scene("builtin:cornell");
+    for (Integrator integrator : {Integrator::path, Integrator::ao, Integrator::primary}) {
+        RenderSettings settings;
+        settings.width = 40;
+        settings.height = 24;
+        settings.integrator = integrator;
+        const Image one_by_one = render(scene, *scene.camera, settings, 7);
+        settings.samples_per_pass = 3;
+        settings.wavefront_paths = 1000;  // wavefronts straddle the samples
+        const auto tracer = make_tracer(Method::edacrt);
+        tracer->set_scene(scene);
+        Renderer renderer(scene, *tracer, *scene.camera, settings);
+        EXPECT_TRUE(renderer.render_pass());                     // samples 0-2
+        EXPECT_TRUE(renderer.render_pass(nullptr, nullptr, 1));  // 3
+        EXPECT_TRUE(renderer.render_pass(nullptr, nullptr, 3));  // 4-6
+        EXPECT_EQ(renderer.film().passes(), 7);
+        EXPECT_TRUE(renderer.film().mean().pixels == one_by_one.pixels)
+            << integrator_name(integrator);
+        EXPECT_THROW(renderer.render_pass(nullptr, nullptr, 4), std::invalid_argument);
+    }
+    RenderSettings bad;
+    bad.samples_per_pass = 0;
+    EXPECT_THROW(validate(bad), InputError);
+    bad.samples_per_pass = 1025;
+    EXPECT_THROW(validate(bad), InputError);
 }
 
 TEST(Determinism, EmbreeRendersTheSameImageWithinRounding) {

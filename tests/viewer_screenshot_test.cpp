@@ -143,19 +143,19 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
     const auto dir = std::filesystem::temp_directory_path() /
                      ("edacrt_viewer_memory_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    // 120 MB: the window's full resolution (1280x800) does not fit, half of it does. Starting
+    // 200 MB: the window's full resolution (1280x800) does not fit, half of it does. Starting
     // at full resolution is refused; after the refused change the render goes on at half.
     std::ofstream(dir / "script.txt")
         << "set resolution 0.5\nwait-spp 1\nset resolution 1\nframes 2\nwait-spp 3\nquit\n";
     const auto result = test::run_command(
-        "EDACRT_MEMORY_LIMIT=120000000 " +
+        "EDACRT_MEMORY_LIMIT=200000000 " +
         viewer_under_xvfb("--script " + (dir / "script.txt").string() + " builtin:cornell"));
     std::filesystem::remove_all(dir);
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const std::string refusal = "edacrt_viewer: error: a 1280x800 path render needs about ";
     const std::size_t first = result.output.find(refusal);
     ASSERT_NE(first, std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("more than the 120 MB of EDACRT_MEMORY_LIMIT; choose a smaller "
+    EXPECT_NE(result.output.find("more than the 200 MB of EDACRT_MEMORY_LIMIT; choose a smaller "
                                  "size",
                                  first),
               std::string::npos)

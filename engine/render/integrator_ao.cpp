@@ -27,7 +27,7 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
             for (std::size_t h = range.begin(); h != range.end(); ++h) {
                 const std::size_t i = hit_pixels[h];
                 const Surface s = make_surface(wf.scene, rays[i], hits[i]);
-                const PixelSampler sampler = wf.sampler(std::uint32_t(begin + i));
+                const PixelSampler sampler = wf.sampler(begin + i);
                 for (std::size_t k = 0; k < n; ++k) {
                     const glm::vec2 u = sampler.get_2d(1, std::uint32_t(k), std::uint32_t(n));
                     ao_rays[h * n + k] = spawn_ray(s, sample_cosine_hemisphere(s.ng, u), distance);

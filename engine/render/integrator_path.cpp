@@ -83,7 +83,7 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
                 if (depth == settings.max_depth) continue;
 
                 const Bsdf& bsdf = wf.shading.bsdfs[s.material];
-                const PixelSampler sampler = wf.sampler(std::uint32_t(begin + path.pixel));
+                const PixelSampler sampler = wf.sampler(begin + path.pixel);
                 const std::uint32_t pair = 1 + kPairsPerBounce * std::uint32_t(depth);
                 const glm::vec2 u_choice = sampler.get_2d(pair);  // light, lobe
                 const glm::vec3 wo = -ray.dir;

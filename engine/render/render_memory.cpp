@@ -30,23 +30,6 @@ constexpr std::uint64_t kTracerBytesPerRay = RayStream::kBytesPerRay;
 // pdf).
 constexpr std::uint64_t kPathStateBytes = sizeof(glm::vec3) + 2 * 4;
 
-/// Wavefront bytes per pixel of a tile, counted from the integrators' arrays.
-std::uint64_t wavefront_bytes_per_pixel(const RenderSettings& s) {
-    const std::uint64_t traced = trace_bytes_per_ray();
-    switch (s.integrator) {
-        case Integrator::primary:  // camera rays and hits
-            return traced;
-        case Integrator::ao:  // camera rays and hits, the hit list, ao_samples rays per hit
-            return traced + sizeof(std::uint32_t) + std::uint64_t(s.ao_samples) * traced;
-        case Integrator::path:
-            // Rays and hits; the next rays, the shadow rays and the compacted shadow batch, with
-            // its hits; path states, shadow contributions, two flags and the shadow index.
-            return traced + 3 * sizeof(Ray) + sizeof(Hit) + kPathStateBytes + sizeof(glm::vec3) +
-                   2 + sizeof(std::uint32_t);
-    }
-    return traced;
-}
-
 std::optional<std::uint64_t> read_number(const char* path) {
     std::ifstream in(path);
     std::string text;
@@ -68,6 +51,22 @@ std::string format_bytes(std::uint64_t bytes) {
 
 }  // namespace
 
+std::uint64_t wavefront_bytes_per_path(const RenderSettings& s) {
+    const std::uint64_t traced = trace_bytes_per_ray();
+    switch (s.integrator) {
+        case Integrator::primary:  // camera rays and hits
+            return traced;
+        case Integrator::ao:  // camera rays and hits, the hit list, ao_samples rays per hit
+            return traced + sizeof(std::uint32_t) + std::uint64_t(s.ao_samples) * traced;
+        case Integrator::path:
+            // Rays and hits; the next rays, the shadow rays and the compacted shadow batch, with
+            // its hits; path states, shadow contributions, two flags and the shadow index.
+            return traced + 3 * sizeof(Ray) + sizeof(Hit) + kPathStateBytes + sizeof(glm::vec3) +
+                   2 + sizeof(std::uint32_t);
+    }
+    return traced;
+}
+
 std::uint64_t trace_bytes_per_ray(bool detail) {
     return sizeof(Ray) + sizeof(Hit) + kTracerBytesPerRay +
            // RecordingObserver: three path words and a depth per ray
@@ -77,10 +76,12 @@ std::uint64_t trace_bytes_per_ray(bool detail) {
 std::uint64_t render_memory_bytes(const RenderSettings& settings,
                                   std::uint64_t extra_bytes_per_pixel) {
     const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
-    const std::uint64_t tile = std::min<std::uint64_t>(pixels, wavefront_tile_pixels(settings));
+    const auto samples = std::uint64_t(settings.samples_per_pass);
+    const std::uint64_t wave = wavefront_paths(settings, pixels * samples);
     // Film: a double sum per pixel; Renderer: the pass's float samples.
-    const std::uint64_t per_pixel = sizeof(glm::dvec3) + sizeof(glm::vec3) + extra_bytes_per_pixel;
-    return pixels * per_pixel + tile * wavefront_bytes_per_pixel(settings);
+    const std::uint64_t per_pixel =
+        sizeof(glm::dvec3) + samples * sizeof(glm::vec3) + extra_bytes_per_pixel;
+    return pixels * per_pixel + wave * wavefront_bytes_per_path(settings);
 }
 
 MemoryLimit memory_limit() {

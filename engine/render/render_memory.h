@@ -13,8 +13,12 @@ namespace edacrt {
 /// method that keeps the most); with `detail`, also the per-ray statistics of a TraceDetail.
 std::uint64_t trace_bytes_per_ray(bool detail = false);
 
+/// Bytes of wavefront state per path (for ao per camera ray, with its ao_samples rays),
+/// counted from the integrators' arrays.
+std::uint64_t wavefront_bytes_per_path(const RenderSettings& settings);
+
 /// Peak bytes of a Renderer with `settings`: the film and the pass's samples for every pixel,
-/// the wavefront state of one tile, and `extra_bytes_per_pixel` the caller keeps per pixel
+/// the state of one wavefront, and `extra_bytes_per_pixel` the caller keeps per pixel
 /// (its copies of the image, output buffers).
 std::uint64_t render_memory_bytes(const RenderSettings& settings,
                                   std::uint64_t extra_bytes_per_pixel = 0);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "render/render_memory.h"
 #include "util/error.h"
 
 namespace edacrt {
@@ -23,12 +24,17 @@ void validate(const RenderSettings& s) {
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(s.sky[c]) || s.sky[c] < 0.0f)
             fail("sky radiance must be finite and >= 0");
-    if (s.tile_pixels < 1) fail("tile size must be at least 1 pixel");
+    if (s.samples_per_pass < 1 || s.samples_per_pass > 1024)
+        fail("samples per pass must be 1..1024, got " + std::to_string(s.samples_per_pass));
 }
 
-std::size_t wavefront_tile_pixels(const RenderSettings& settings) {
-    if (settings.integrator != Integrator::ao) return settings.tile_pixels;
-    return std::max<std::size_t>(1, settings.tile_pixels / std::size_t(settings.ao_samples));
+std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths) {
+    std::uint64_t wave = settings.wavefront_paths;
+    if (wave == 0)
+        wave = kWavefrontBudget / wavefront_bytes_per_path(settings);
+    else if (settings.integrator == Integrator::ao)
+        wave /= std::uint64_t(settings.ao_samples);
+    return std::size_t(std::clamp<std::uint64_t>(std::min(wave, paths), 1, paths > 0 ? paths : 1));
 }
 
 Integrator parse_integrator(std::string_view name) {

@@ -27,7 +27,12 @@ struct RenderSettings {
     glm::vec3 sky{1.0f};       // radiance of the sky seen by path and ao when nothing is hit,
                                // used by `path` only when the scene has no emitters
     std::uint32_t seed = 0;
-    std::size_t tile_pixels = std::size_t(1) << 18;  // pixels traced as one wavefront
+    // Samples per pixel a pass renders at most (Renderer::render_pass): a pass traces them all
+    // together, so that a divide-and-conquer tracer gets large batches of coherent rays.
+    int samples_per_pass = 1;
+    // Paths traced as one wavefront; 0: every path of the pass, as far as kWavefrontBudget
+    // allows.
+    std::size_t wavefront_paths = 0;
 
     bool operator==(const RenderSettings&) const = default;
 };
@@ -35,9 +40,13 @@ struct RenderSettings {
 /// Throws InputError naming the first setting out of range.
 void validate(const RenderSettings& settings);
 
-/// Pixels per wavefront: tile_pixels, divided by ao_samples for ao so that a tile's AO batch
-/// holds about tile_pixels rays (the memory of a batch grows with its rays).
-std::size_t wavefront_tile_pixels(const RenderSettings& settings);
+/// Bytes of wavefront state a pass may take when wavefront_paths is 0 (whole passes).
+inline constexpr std::uint64_t kWavefrontBudget = std::uint64_t(1) << 30;
+
+/// Paths per wavefront for a pass of `paths` paths: wavefront_paths (for ao divided by
+/// ao_samples, so that a wavefront's AO batch holds about wavefront_paths rays) or, when it is
+/// 0, the whole pass within kWavefrontBudget. Never more than `paths`, never 0.
+std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths);
 
 Integrator parse_integrator(std::string_view name);
 std::string_view integrator_name(Integrator integrator);

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "render/render_memory.h"
 
@@ -29,17 +31,25 @@ Renderer::Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
       projection_(validated(camera), settings.width, settings.height),
       shading_(scene),
       film_(settings.width, settings.height),
-      samples_(std::size_t(settings.width) * std::size_t(settings.height)) {}
+      samples_(std::size_t(settings.width) * std::size_t(settings.height) *
+               std::size_t(settings.samples_per_pass)) {}
 
-bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary_detail) {
+bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary_detail,
+                           int samples) {
+    if (samples == 0) samples = settings_.samples_per_pass;
+    if (samples < 1 || samples > settings_.samples_per_pass)
+        throw std::invalid_argument("Renderer::render_pass: " + std::to_string(samples) +
+                                    " samples, at most " +
+                                    std::to_string(settings_.samples_per_pass) + " per pass");
     const auto start = std::chrono::steady_clock::now();
     PassStats stats;
+    const std::size_t pixels = std::size_t(settings_.width) * std::size_t(settings_.height);
     Wavefront wf{scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
-                 cancel, stats};
-    const std::size_t pixels = samples_.size();
-    const std::size_t tile_pixels = wavefront_tile_pixels(settings_);
-    for (std::size_t begin = 0; begin < pixels; begin += tile_pixels) {
-        const std::size_t end = std::min(pixels, begin + tile_pixels);
+                 pixels, cancel,   stats};
+    const std::size_t paths = pixels * std::size_t(samples);
+    const std::size_t wave = wavefront_paths(settings_, paths);
+    for (std::size_t begin = 0; begin < paths; begin += wave) {
+        const std::size_t end = std::min(paths, begin + wave);
         const std::span<glm::vec3> tile(samples_.data() + begin, end - begin);
         bool done = false;
         switch (settings_.integrator) {
@@ -63,12 +73,15 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
         std::vector<Hit> hits(rays.size());
         tracer_.trace(rays, hits, Query::closest, primary_detail);
     }
-    for (glm::vec3& sample : samples_)
+    const std::span<glm::vec3> rendered(samples_.data(), paths);
+    for (glm::vec3& sample : rendered)
         if (!std::isfinite(sample.x) || !std::isfinite(sample.y) || !std::isfinite(sample.z)) {
             sample = glm::vec3(0.0f);
             ++stats.dropped_samples;
         }
-    film_.add_pass(samples_);
+    // In sample order, as passes of one sample would add them: the same sums.
+    for (int k = 0; k < samples; ++k)
+        film_.add_pass(rendered.subspan(std::size_t(k) * pixels, pixels));
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     last_pass_ = stats;
     total_ += stats;

@@ -1,6 +1,7 @@
 #pragma once
-// The progressive wavefront renderer: each pass adds one sample per pixel to the film, tile by
-// tile, every bounce of a tile traced as one batch by the chosen Tracer.
+// The progressive wavefront renderer: each pass adds samples to every pixel of the film, all of
+// them traced together as one wavefront (or a few, within a memory budget), every bounce of a
+// wavefront one batch of the chosen Tracer.
 #include <atomic>
 #include <memory>
 #include <string>
@@ -23,11 +24,14 @@ class Renderer {
     Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
              const RenderSettings& settings);
 
-    /// Renders the next pass into the film. Returns false, leaving the film as it was, when
+    /// Renders the next pass, `samples` samples per pixel (0: settings().samples_per_pass, the
+    /// most a pass may take), into the film. Returns false, leaving the film as it was, when
     /// `cancel` became true (it is checked before every batch). With `primary_detail`, also
-    /// records the per-level and per-pixel statistics of the pass's camera rays (untimed).
+    /// records the per-level and per-pixel statistics of the first sample's camera rays
+    /// (untimed). The image depends on the samples rendered so far, not on how passes group
+    /// them.
     bool render_pass(const std::atomic<bool>* cancel = nullptr,
-                     TraceDetail* primary_detail = nullptr);
+                     TraceDetail* primary_detail = nullptr, int samples = 0);
 
     /// Starts over (the next pass is sample 0 again).
     void reset();
@@ -47,7 +51,7 @@ class Renderer {
     ShadingScene shading_;
     Film film_;
     PassStats last_pass_, total_;
-    std::vector<glm::vec3> samples_;  // the pass being rendered
+    std::vector<glm::vec3> samples_;  // the pass being rendered, sample-major
 };
 
 }  // namespace edacrt

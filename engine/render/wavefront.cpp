@@ -12,9 +12,10 @@ void Wavefront::camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>
     const auto width = std::size_t(settings.width);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1024), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const glm::vec2 jitter = sampler(std::uint32_t(i)).get_2d(0);
+            const glm::vec2 jitter = sampler(i).get_2d(0);
+            const std::size_t pixel = i % pixels;
             rays[i - begin] =
-                projection.ray(float(i % width) + jitter.x, float(i / width) + jitter.y);
+                projection.ray(float(pixel % width) + jitter.x, float(pixel / width) + jitter.y);
         }
     });
 }

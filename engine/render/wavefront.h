@@ -1,6 +1,8 @@
 #pragma once
-// What an integrator works with while it renders one tile of one pass: the scene, the tracer
-// (every batch of rays goes through trace()), the sample generator and the statistics.
+// What an integrator works with while it renders one wavefront of one pass: the scene, the
+// tracer (every batch of rays goes through trace()), the sample generator and the statistics.
+// A pass renders `samples` samples of every pixel; its paths are numbered sample-major, path
+// p being sample p / pixels of pixel p % pixels, and a wavefront is a range of them.
 #include <atomic>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -39,24 +41,27 @@ struct Wavefront {
     Tracer& tracer;
     const RenderSettings& settings;
     const PinholeProjection& projection;
-    std::uint32_t pass;               // the sample index of every pixel in this pass
+    std::uint32_t first_sample;       // the sample index of the pass's first sample
+    std::size_t pixels;               // width * height
     const std::atomic<bool>* cancel;  // checked before every batch
     PassStats& stats;
 
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 
-    PixelSampler sampler(std::uint32_t pixel) const {
-        return PixelSampler(settings.seed, pixel, pass);
+    /// The samples of path p.
+    PixelSampler sampler(std::size_t path) const {
+        return PixelSampler(settings.seed, std::uint32_t(path % pixels),
+                            first_sample + std::uint32_t(path / pixels));
     }
 
-    /// Camera rays of pixels [begin, end), jittered within the pixel (sample pair 0).
+    /// Camera rays of paths [begin, end), jittered within the pixel (sample pair 0).
     void camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>& rays) const;
 
     /// Traces one batch (timed). Returns false, tracing nothing, when cancelled.
     bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);
 };
 
-// The integrators: each renders pixels [begin, end) of the pass into radiance[0, end - begin)
+// The integrators: each renders paths [begin, end) of the pass into radiance[0, end - begin)
 // and returns false when cancelled.
 bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
                     std::span<glm::vec3> radiance);

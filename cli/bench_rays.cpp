@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/benchmark_rays.h"
 #include "render/bsdf.h"
 #include "render/shading_scene.h"
 #include "util/error.h"
@@ -10,21 +11,9 @@
 namespace edacrt::cli {
 namespace {
 
-// Independent random streams, keyed further by pixel and sample; the first two are those of
-// bench/paper_rays.cpp.
-constexpr std::uint32_t kJitterStream = 0x1f0e3d5bu;
-constexpr std::uint32_t kBounceStream = 0x7a3c9e21u;
+// Streams of our own, beside render/benchmark_rays.h's jitter and bounce streams.
 constexpr std::uint32_t kAoStream = 0x3b5d2c47u;
 constexpr std::uint32_t kLightStream = 0x5e91a0c3u;
-
-glm::vec2 random_2d(std::uint32_t key) {
-    return {hash_to_unit_float(key), hash_to_unit_float(pcg_hash(key))};
-}
-
-std::uint32_t key(std::uint32_t seed, std::uint32_t stream, std::uint32_t pixel,
-                  std::uint32_t sample) {
-    return hash_combine(hash_combine(hash_combine(seed, stream), pixel), sample);
-}
 
 }  // namespace
 
@@ -53,17 +42,7 @@ BenchRays::BenchRays(const Scene& scene, const Camera& camera, int width, int he
 }
 
 std::vector<Ray> BenchRays::camera(int spp) const {
-    std::vector<Ray> rays;
-    rays.reserve(std::size_t(width_) * std::size_t(height_) * std::size_t(spp));
-    for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width_; ++x) {
-            const auto pixel = std::uint32_t(y * width_ + x);
-            for (int s = 0; s < spp; ++s) {
-                const glm::vec2 u = random_2d(key(seed_, kJitterStream, pixel, std::uint32_t(s)));
-                rays.push_back(projection_.ray(float(x) + u.x, float(y) + u.y));
-            }
-        }
-    return rays;
+    return jittered_camera_rays(projection_, width_, height_, spp, seed_);
 }
 
 template <class MakeRay>
@@ -77,7 +56,7 @@ std::vector<Ray> BenchRays::from_hits(MakeRay make_ray) const {
 
 std::vector<Ray> BenchRays::diffuse() const {
     return from_hits([&](const Surface& s, std::uint32_t pixel) {
-        const glm::vec2 u = random_2d(key(seed_, kBounceStream, pixel, 1));
+        const glm::vec2 u = random_2d(sample_key(seed_, kBounceStream, pixel, 1));
         return spawn_ray(s, sample_cosine_hemisphere(s.ng, u));
     });
 }
@@ -86,7 +65,7 @@ std::vector<Ray> BenchRays::ambient_occlusion() const {
     const Aabb box = scene_.bounds();
     const float reach = kAoDistanceFraction * glm::length(box.hi - box.lo);
     return from_hits([&](const Surface& s, std::uint32_t pixel) {
-        const glm::vec2 u = random_2d(key(seed_, kAoStream, pixel, 0));
+        const glm::vec2 u = random_2d(sample_key(seed_, kAoStream, pixel, 0));
         return spawn_ray(s, sample_cosine_hemisphere(s.ng, u), reach);
     });
 }
@@ -98,8 +77,8 @@ std::vector<Ray> BenchRays::shadow() const {
                           0.5f * (box.lo.z + box.hi.z)};
     return from_hits([&](const Surface& s, std::uint32_t pixel) {
         if (lights.empty()) return spawn_ray_to(s, above);
-        const glm::vec2 u = random_2d(key(seed_, kLightStream, pixel, 0));
-        const float select = hash_to_unit_float(key(seed_, kLightStream, pixel, 1));
+        const glm::vec2 u = random_2d(sample_key(seed_, kLightStream, pixel, 0));
+        const float select = hash_to_unit_float(sample_key(seed_, kLightStream, pixel, 1));
         return spawn_ray_to(s, lights.sample(scene_, select, u).point);
     });
 }

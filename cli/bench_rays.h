@@ -1,7 +1,7 @@
 #pragma once
 // The ray sets of `edacrt bench`, all from one camera. Random numbers are counter-based
-// (util/hash_random.h): a ray depends only on the seed, its pixel and its sample, and camera
-// and diffuse rays equal those of bench/paper_rays.cpp for the same view, size and seed.
+// (render/benchmark_rays.h): a ray depends only on the seed, its pixel and its sample, and
+// camera and diffuse rays equal those of bench/paper_rays.cpp for the same view, size and seed.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "bench_agreement.h"
+#include "trace/hit_agreement.h"
 #include "trace/tracer.h"
 
 namespace edacrt::cli {

@@ -8,7 +8,7 @@
 #include "geometry/triangle.h"
 #include "trace/tracer.h"
 
-namespace edacrt::cli {
+namespace edacrt {
 
 struct Agreement {
     std::uint64_t rays = 0;
@@ -28,4 +28,4 @@ Agreement compare_hits(const std::vector<Triangle>& triangles, std::span<const R
                        std::span<const Hit> expected, std::span<const Hit> got, Query query,
                        bool exact);
 
-}  // namespace edacrt::cli
+}  // namespace edacrt

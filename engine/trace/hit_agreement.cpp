@@ -1,10 +1,10 @@
-#include "bench_agreement.h"
+#include "trace/hit_agreement.h"
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 
-namespace edacrt::cli {
+namespace edacrt {
 namespace {
 
 bool same_t(float a, float b) { return std::abs(a - b) <= 1e-6f * std::abs(b); }
@@ -56,4 +56,4 @@ Agreement compare_hits(const std::vector<Triangle>& triangles, std::span<const R
     return a;
 }
 
-}  // namespace edacrt::cli
+}  // namespace edacrt

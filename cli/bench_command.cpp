@@ -126,6 +126,18 @@ void check_writable(const std::string& path, const char* option) {
         throw InputError(std::string(option) + " " + path + ": cannot write this file");
 }
 
+/// The variant the others are compared with: naive when measured, else the first of our
+/// kernel, else the first.
+std::size_t reference_index(const std::vector<Variant>& variants) {
+    const auto first = [&](auto pred) {
+        return std::size_t(std::find_if(variants.begin(), variants.end(), pred) - variants.begin());
+    };
+    const std::size_t naive = first([](const Variant& v) { return v.method == Method::naive; });
+    if (naive < variants.size()) return naive;
+    const std::size_t ours = first([](const Variant& v) { return v.method != Method::embree; });
+    return ours < variants.size() ? ours : 0;
+}
+
 /// Times every variant on `rays`, repetitions interleaved (A B C A B C ...), then compares
 /// the hits of the last repetition with the reference variant's.
 SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
@@ -153,12 +165,7 @@ SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
             m.trace_seconds.push_back(seconds_since(start));
             m.working_bytes = std::max(m.working_bytes, tracer->working_bytes());
         }
-    // The reference: naive when measured, else the first method of our kernel.
-    std::size_t ref = 0;
-    for (std::size_t i = variants.size(); i-- > 0;)
-        if (variants[i].method == Method::naive ||
-            (variants[i].method != Method::embree && variants[ref].method != Method::naive))
-            ref = i;
+    const std::size_t ref = reference_index(variants);
     run.methods[ref].reference = true;
     for (std::size_t i = 0; i < variants.size(); ++i)
         if (i != ref)
@@ -166,6 +173,44 @@ SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
                 triangles, rays, hits[ref], hits[i], query,
                 variants[i].method != Method::embree && variants[ref].method != Method::embree);
     return run;
+}
+
+/// The --json and --markdown files, when asked for.
+void write_outputs(const BenchOptions& o, const std::vector<int>& thread_counts,
+                   const nlohmann::json& scenes_json, const nlohmann::json& rows_json,
+                   const std::vector<Row>& rows, bool agreement_ok) {
+    const nlohmann::json machine = machine_json();
+    if (!o.json_path.empty()) {
+        nlohmann::json settings = {{"width", o.width},
+                                   {"height", o.height},
+                                   {"spp", o.spp},
+                                   {"sets", o.sets},
+                                   {"methods", o.methods},
+                                   {"repeat", o.repeat},
+                                   {"threads", thread_counts},
+                                   {"seed", o.seed},
+                                   {"edacrt_params", "default preset"},
+                                   {"ao_distance_fraction_of_diagonal", kAoDistanceFraction}};
+        write_file(o.json_path,
+                   nlohmann::json{{"command", "bench"},
+                                  {"machine", machine},
+                                  {"settings", settings},
+                                  {"scenes", scenes_json},
+                                  {"results", rows_json},
+                                  {"agreement_ok", agreement_ok}}
+                           .dump(2) +
+                       "\n",
+                   "benchmark JSON");
+    }
+    if (!o.markdown_path.empty())
+        write_file(o.markdown_path,
+                   "`edacrt bench`, " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                       " pixels, median of " + std::to_string(o.repeat) + " frames (set_scene + " +
+                       "trace); " + machine["cpu"].get<std::string>() + ", " +
+                       machine["date"].get<std::string>() + ", revision " +
+                       machine["git_revision"].get<std::string>() + ".\n\n" +
+                       markdown_table(rows, thread_counts.size() > 1),
+                   "benchmark markdown");
 }
 
 void run(const BenchOptions& o) {
@@ -243,38 +288,7 @@ void run(const BenchOptions& o) {
         }
     }
 
-    const nlohmann::json machine = machine_json();
-    if (!o.json_path.empty()) {
-        nlohmann::json settings = {{"width", o.width},
-                                   {"height", o.height},
-                                   {"spp", o.spp},
-                                   {"sets", o.sets},
-                                   {"methods", o.methods},
-                                   {"repeat", o.repeat},
-                                   {"threads", thread_counts},
-                                   {"seed", o.seed},
-                                   {"edacrt_params", "default preset"},
-                                   {"ao_distance_fraction_of_diagonal", kAoDistanceFraction}};
-        write_file(o.json_path,
-                   nlohmann::json{{"command", "bench"},
-                                  {"machine", machine},
-                                  {"settings", settings},
-                                  {"scenes", scenes_json},
-                                  {"results", rows_json},
-                                  {"agreement_ok", disagreements == 0}}
-                           .dump(2) +
-                       "\n",
-                   "benchmark JSON");
-    }
-    if (!o.markdown_path.empty())
-        write_file(o.markdown_path,
-                   "`edacrt bench`, " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                       " pixels, median of " + std::to_string(o.repeat) + " frames (set_scene + " +
-                       "trace); " + machine["cpu"].get<std::string>() + ", " +
-                       machine["date"].get<std::string>() + ", revision " +
-                       machine["git_revision"].get<std::string>() + ".\n\n" +
-                       markdown_table(rows, sweep),
-                   "benchmark markdown");
+    write_outputs(o, thread_counts, scenes_json, rows_json, rows, disagreements == 0);
     if (disagreements)
         throw std::runtime_error("the methods disagree on " + std::to_string(disagreements) +
                                  " rays (see DISAGREEMENT above)");

@@ -4,8 +4,9 @@
 //   diffuse     one cosine-distributed ray from every hit of the 1-spp camera rays
 //   reflection  the mirror ray from every such hit
 //   path        bounces 2 and 3 of diffuse path tracing from those hits (diffuse = bounce 1)
-// Random numbers are counter-based (util/hash_random.h): a ray depends only on --seed, its
-// pixel, its sample and its bounce. Secondary rays are made from bvh hits.
+// Random numbers are counter-based (render/benchmark_rays.h): a ray depends only on --seed,
+// its pixel, its sample and its bounce; `edacrt bench` makes the same camera and diffuse rays.
+// Secondary rays are made from bvh hits.
 //   build/edacrt_paper_rays --scene ../shared/scenes/sponza/sponza.obj --out-dir out/paper/sponza
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "render/benchmark_rays.h"
 #include "render/bsdf.h"
 #include "render/shading_scene.h"
 #include "scene/camera.h"
@@ -23,7 +25,6 @@
 #include "trace/ray_file.h"
 #include "trace/tracer.h"
 #include "util/error.h"
-#include "util/hash_random.h"
 
 namespace edacrt {
 namespace {
@@ -38,14 +39,6 @@ struct Options {
     float fov = 0.0f;  // 0: the scene's or frame_box's
 };
 
-// Independent random streams: one per use, keyed further by pixel, sample and bounce.
-constexpr std::uint32_t kJitterStream = 0x1f0e3d5bu;
-constexpr std::uint32_t kBounceStream = 0x7a3c9e21u;
-
-glm::vec2 random_2d(std::uint32_t key) {
-    return {hash_to_unit_float(key), hash_to_unit_float(pcg_hash(key))};
-}
-
 Camera choose_camera(const Scene& scene, const Options& o) {
     Camera camera = scene.camera.value_or(frame_box(scene.bounds()));
     if (!o.eye.empty()) camera.eye = {o.eye[0], o.eye[1], o.eye[2]};
@@ -53,22 +46,6 @@ Camera choose_camera(const Scene& scene, const Options& o) {
     if (o.fov > 0.0f) camera.vfov_degrees = o.fov;
     validate(camera);
     return camera;
-}
-
-/// spp jittered rays per pixel, pixel-major (pixel 0's samples first), rows from the top.
-std::vector<Ray> camera_rays(const PinholeProjection& projection, const Options& o, int spp) {
-    std::vector<Ray> rays;
-    rays.reserve(std::size_t(o.width) * std::size_t(o.height) * std::size_t(spp));
-    for (int y = 0; y < o.height; ++y)
-        for (int x = 0; x < o.width; ++x) {
-            const auto pixel = std::uint32_t(y * o.width + x);
-            for (int s = 0; s < spp; ++s) {
-                const glm::vec2 u = random_2d(hash_combine(
-                    hash_combine(hash_combine(o.seed, kJitterStream), pixel), std::uint32_t(s)));
-                rays.push_back(projection.ray(float(x) + u.x, float(y) + u.y));
-            }
-        }
-    return rays;
 }
 
 std::vector<Hit> trace(Tracer& tracer, const std::vector<Ray>& rays) {
@@ -87,8 +64,7 @@ void diffuse_bounce(const Scene& scene, const std::vector<Ray>& rays, const std:
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (!hits[i].hit()) continue;
         const Surface s = make_surface(scene, rays[i], hits[i]);
-        const glm::vec2 u = random_2d(
-            hash_combine(hash_combine(hash_combine(seed, kBounceStream), keys[i]), bounce));
+        const glm::vec2 u = random_2d(sample_key(seed, kBounceStream, keys[i], bounce));
         out.push_back(spawn_ray(s, sample_cosine_hemisphere(s.ng, u)));
         out_keys.push_back(keys[i]);
     }
@@ -127,10 +103,11 @@ void run(const Options& o) {
                          (ec ? " (" + ec.message() + ")" : std::string()));
     const PinholeProjection projection(choose_camera(scene, o), o.width, o.height);
 
-    const std::vector<Ray> camera = camera_rays(projection, o, 1);
+    const std::vector<Ray> camera = jittered_camera_rays(projection, o.width, o.height, 1, o.seed);
     write(o, "camera_1spp", camera);
     for (int spp : {4, 16})
-        write(o, "camera_" + std::to_string(spp) + "spp", camera_rays(projection, o, spp));
+        write(o, "camera_" + std::to_string(spp) + "spp",
+              jittered_camera_rays(projection, o.width, o.height, spp, o.seed));
 
     const auto tracer = make_tracer(Method::bvh);
     tracer->set_scene(scene);

@@ -142,7 +142,8 @@ def seed_comparison(build, out, args):
 
 # Headings of the sections that other scripts append to bench/README.md, after this report's.
 OTHER_SECTIONS = ["## EDACRT against DACRT (the paper's experiment)",
-                  "## Deviations from the paper, measured"]
+                  "## Deviations from the paper, measured",
+                  "## edacrt bench"]
 
 
 def markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started):
@@ -269,7 +270,8 @@ def main():
 
     report = markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started)
     readme = ROOT / "bench" / "README.md"
-    # Sections other scripts write (bench/deviations.py, bench/paper_experiment.py) are kept.
+    # Sections other scripts write (bench/deviations.py, bench/paper_experiment.py) and the
+    # edacrt bench section are kept.
     old = readme.read_text() if readme.exists() else ""
     kept = [old.find(heading) for heading in OTHER_SECTIONS if heading in old]
     readme.write_text(report.rstrip() + "\n" + ("\n" + old[min(kept):] if kept else ""))

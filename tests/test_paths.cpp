@@ -6,14 +6,13 @@
 #include <fstream>
 #include <string_view>
 
+#include "scene/scene_paths.h"
+
 namespace edacrt::test {
 
 std::filesystem::path source_dir() { return EDACRT_SOURCE_DIR; }
 
-std::filesystem::path scenes_dir() {
-    if (const char* env = std::getenv("EDACRT_SCENES"); env && *env) return env;
-    return source_dir().parent_path() / "shared" / "scenes";
-}
+std::filesystem::path scenes_dir() { return default_scenes_dir(source_dir()); }
 
 std::filesystem::path cli_path() { return EDACRT_CLI; }
 

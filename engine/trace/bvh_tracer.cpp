@@ -103,6 +103,7 @@ void BvhTracer::set_scene(const Scene& scene) {
         bounds[i] = conservative_bounds(triangles_[i]);
         centroids[i] = centroid(triangles_[i]);
     }
+    build_bytes_ = bounds.capacity() * sizeof(Aabb) + centroids.capacity() * sizeof(glm::vec3);
     nodes_.clear();
     prims_.clear();
     if (triangles_.empty()) return;
@@ -111,6 +112,11 @@ void BvhTracer::set_scene(const Scene& scene) {
     nodes_.reserve(2 * triangles_.size());
     nodes_.emplace_back();
     Builder(bounds, centroids, prims_, nodes_).build(0, 0, std::uint32_t(prims_.size()), 0);
+}
+
+std::size_t BvhTracer::working_bytes() const {
+    return triangles_.capacity() * sizeof(Triangle) + prims_.capacity() * sizeof(std::uint32_t) +
+           nodes_.capacity() * sizeof(Node) + build_bytes_;
 }
 
 TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,

@@ -14,6 +14,7 @@ class BvhTracer final : public Tracer {
   public:
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
+    std::size_t working_bytes() const override;
 
     /// A node is a leaf when count > 0 (triangles prims[first, first + count)); otherwise its
     /// children are nodes first and first + 1.
@@ -35,6 +36,7 @@ class BvhTracer final : public Tracer {
     std::vector<Triangle> triangles_;
     std::vector<std::uint32_t> prims_;  // triangle numbers, grouped by leaf
     std::vector<Node> nodes_;
+    std::size_t build_bytes_ = 0;  // the builder's temporaries, alive beside the members
 };
 
 }  // namespace edacrt

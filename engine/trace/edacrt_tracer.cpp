@@ -32,6 +32,13 @@ void EdacrtTracer::set_scene(const Scene& scene) {
     }
 }
 
+std::size_t EdacrtTracer::working_bytes() const {
+    const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    return bytes(scene_.triangles) + bytes(scene_.bounds) + bytes(scene_.centroids) +
+           batch_.rays.bytes() + bytes(batch_.tris) + bytes(batch_.scratch.items) +
+           bytes(batch_.scratch.keep) + bytes(batch_.scratch.block_kept);
+}
+
 TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                      TraceDetail* detail) {
     return query == Query::closest ? trace_with<Query::closest>(rays, hits, detail)

@@ -20,6 +20,7 @@ class EdacrtTracer final : public Tracer {
 
     Method method() const override { return method_; }
     void set_scene(const Scene& scene) override;
+    std::size_t working_bytes() const override;
 
     const EdacrtParams& params() const { return params_; }
     /// Throws InputError for parameters out of range (see validate()).

@@ -166,6 +166,17 @@ void check_ray_for_embree(const Ray& ray, std::size_t index) {
                          "direction 1e-12 to 1e12); use another method");
 }
 
+/// Embree's memory monitor: `bytes` > 0 for an allocation, < 0 for a release.
+template <class DeviceMemory>
+bool track_device_bytes(void* user, ssize_t bytes, bool /*post*/) {
+    auto& memory = *static_cast<DeviceMemory*>(user);
+    const std::int64_t now = memory.current += bytes;
+    std::int64_t peak = memory.peak.load();
+    while (now > peak && !memory.peak.compare_exchange_weak(peak, now)) {
+    }
+    return true;  // never refuse an allocation
+}
+
 }  // namespace
 
 EmbreeTracer::EmbreeTracer(EmbreeMode mode) : mode_(mode) {
@@ -174,6 +185,7 @@ EmbreeTracer::EmbreeTracer(EmbreeMode mode) : mode_(mode) {
     if (!device_)
         throw InputError("Embree: cannot create a device (error " +
                          std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceMemoryMonitorFunction(device_, track_device_bytes<DeviceMemory>, &device_memory_);
 }
 
 EmbreeTracer::~EmbreeTracer() {
@@ -184,6 +196,7 @@ EmbreeTracer::~EmbreeTracer() {
 void EmbreeTracer::set_scene(const Scene& scene) {
     if (scene_) rtcReleaseScene(scene_);
     scene_ = nullptr;  // no stale scene to trace if this one is refused
+    device_memory_.peak = device_memory_.current.load();
     check_scene_for_embree(scene);
     scene_ = rtcNewScene(device_);
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -203,6 +216,10 @@ void EmbreeTracer::set_scene(const Scene& scene) {
     rtcReleaseGeometry(geometry);
     rtcCommitScene(scene_);
     triangles_ = gather_triangles(scene);
+}
+
+std::size_t EmbreeTracer::working_bytes() const {
+    return std::size_t(device_memory_.peak.load()) + triangles_.capacity() * sizeof(Triangle);
 }
 
 void EmbreeTracer::trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query,

@@ -1,6 +1,8 @@
 #pragma once
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstdint>
 #include <vector>
 
 #include "trace/tracer.h"
@@ -21,6 +23,7 @@ class EmbreeTracer final : public Tracer {
 
     Method method() const override { return Method::embree; }
     void set_scene(const Scene& scene) override;
+    std::size_t working_bytes() const override;
 
   protected:
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
@@ -39,6 +42,12 @@ class EmbreeTracer final : public Tracer {
     std::vector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    // What the device holds, from its memory monitor (called from Embree's threads), and the
+    // most it held since set_scene() began.
+    struct DeviceMemory {
+        std::atomic<std::int64_t> current{0}, peak{0};
+    };
+    DeviceMemory device_memory_;
 };
 
 }  // namespace edacrt

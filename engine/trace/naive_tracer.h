@@ -10,6 +10,7 @@ class NaiveTracer final : public Tracer {
   public:
     Method method() const override { return Method::naive; }
     void set_scene(const Scene& scene) override;
+    std::size_t working_bytes() const override { return triangles_.capacity() * sizeof(Triangle); }
 
   protected:
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,

@@ -38,6 +38,11 @@ class Tracer {
     /// Call again whenever the geometry changes. The tracer keeps no reference to `scene`.
     virtual void set_scene(const Scene& scene) = 0;
 
+    /// Bytes of the tracer's own data for the current scene and its last batch (per-frame
+    /// structures, per-ray buffers; Embree: the device's peak since set_scene()), for the
+    /// benchmark's memory column. Excludes the caller's rays and hits.
+    virtual std::size_t working_bytes() const = 0;
+
     /// hits[i] receives the closest hit of rays[i] in [tmin, tmax] (Query::closest) or, for
     /// Query::any, a hit with prim >= 0 when anything occludes the ray. Rays must be valid
     /// (finite origin, finite non-zero direction, tmin <= tmax); see validate_ray().

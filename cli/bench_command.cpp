@@ -1,0 +1,350 @@
+// edacrt bench: every method on the same rays in one process, frame by frame (set_scene() and
+// trace(), nothing kept between frames), repetitions interleaved across methods; a table, JSON
+// and markdown, and a check that all methods found the same hits.
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "bench_rays.h"
+#include "bench_report.h"
+#include "bench_scenes.h"
+#include "commands.h"
+#include "common_options.h"
+#include "render/render_memory.h"
+#include "scene/scene_paths.h"
+#include "util/error.h"
+#include "util/output_file.h"
+
+namespace edacrt::cli {
+namespace {
+
+struct BenchOptions {
+    std::string scenes_dir;
+    std::vector<std::string> scenes;
+    std::vector<std::string> sets = ray_set_kind_names();
+    std::vector<int> spp = {1, 4, 16};
+    std::vector<std::string> methods = {"edacrt", "dacrt", "bvh", "embree"};
+    int width = 1024, height = 1024;
+    int repeat = 5;
+    int threads = 0;
+    bool thread_sweep = false;
+    std::uint32_t seed = 1;
+    std::string json_path, markdown_path;
+};
+
+/// A tracer to time: a method, and for Embree one of its modes.
+struct Variant {
+    std::string label;
+    Method method;
+    EmbreeMode mode = kDefaultEmbreeMode;
+};
+
+std::vector<Variant> make_variants(const std::vector<std::string>& names) {
+    std::vector<Variant> variants;
+    for (const std::string& name : names) {
+        const Method method = parse_method(name);
+        if (std::any_of(variants.begin(), variants.end(),
+                        [&](const Variant& v) { return v.method == method; }))
+            continue;
+        if (method == Method::naive)
+            std::cerr << "bench: warning: naive tests every ray against every triangle; expect "
+                         "hours on large scenes\n";
+        if (method != Method::embree) {
+            variants.push_back({name, method});
+            continue;
+        }
+        make_tracer(Method::embree);  // throws when this build has no Embree
+        for (EmbreeMode mode : {EmbreeMode::packet8, EmbreeMode::single, EmbreeMode::stream})
+            variants.push_back({"embree/" + std::string(embree_mode_name(mode)), method, mode});
+    }
+    return variants;
+}
+
+/// The ray sets to run, by name ("camera-4spp", ...), in order.
+struct SetChoice {
+    std::string name;
+    RaySetKind kind;
+    int spp = 1;
+};
+
+std::vector<SetChoice> make_set_choices(const BenchOptions& o) {
+    std::vector<SetChoice> sets;
+    for (const std::string& name : o.sets) {
+        const RaySetKind kind = parse_ray_set_kind(name);
+        if (kind != RaySetKind::camera) {
+            sets.push_back({name, kind});
+            continue;
+        }
+        for (int spp : o.spp) sets.push_back({"camera-" + std::to_string(spp) + "spp", kind, spp});
+    }
+    return sets;
+}
+
+std::vector<Ray> make_rays(const BenchRays& rays, const SetChoice& set) {
+    switch (set.kind) {
+        case RaySetKind::camera:
+            return rays.camera(set.spp);
+        case RaySetKind::diffuse:
+            return rays.diffuse();
+        case RaySetKind::ao:
+            return rays.ambient_occlusion();
+        case RaySetKind::shadow:
+            return rays.shadow();
+    }
+    return {};
+}
+
+/// Refuses a run whose largest ray set cannot fit (render_memory.h): the rays, one hit buffer
+/// per variant, the tracers' per-ray state and the 1-spp camera rays and hits kept for the
+/// secondary sets. Scenes come on top.
+void check_memory(const BenchOptions& o, std::size_t variants) {
+    const std::uint64_t pixels = std::uint64_t(o.width) * std::uint64_t(o.height);
+    const std::uint64_t rays =
+        pixels * std::uint64_t(*std::max_element(o.spp.begin(), o.spp.end()));
+    if (rays > std::uint64_t(1) << 31)
+        throw InputError("--width x --height x spp gives " + std::to_string(rays) +
+                         " rays in a set; at most 2^31 are supported");
+    const std::uint64_t need = rays * (trace_bytes_per_ray() + (variants - 1) * sizeof(Hit)) +
+                               pixels * (sizeof(Ray) + sizeof(Hit));
+    const MemoryLimit limit = memory_limit();
+    if (need > limit.bytes)
+        throw InputError("the largest ray set (" + std::to_string(rays) + " rays) needs about " +
+                         std::to_string(need / 1'000'000) + " MB with " + std::to_string(variants) +
+                         " tracers, more than the " + std::to_string(limit.bytes / 1'000'000) +
+                         " MB of " + limit.source + "; choose a smaller --width/--height or --spp");
+}
+
+/// Fails now rather than after the whole run.
+void check_writable(const std::string& path, const char* option) {
+    if (path.empty()) return;
+    if (!std::ofstream(path, std::ios::app))
+        throw InputError(std::string(option) + " " + path + ": cannot write this file");
+}
+
+/// The variant the others are compared with: naive when measured, else the first of our
+/// kernel, else the first.
+std::size_t reference_index(const std::vector<Variant>& variants) {
+    const auto first = [&](auto pred) {
+        return std::size_t(std::find_if(variants.begin(), variants.end(), pred) - variants.begin());
+    };
+    const std::size_t naive = first([](const Variant& v) { return v.method == Method::naive; });
+    if (naive < variants.size()) return naive;
+    const std::size_t ours = first([](const Variant& v) { return v.method != Method::embree; });
+    return ours < variants.size() ? ours : 0;
+}
+
+/// Times every variant on `rays`, repetitions interleaved (A B C A B C ...), then compares
+/// the hits of the last repetition with the reference variant's.
+SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
+               const std::vector<Variant>& variants, const std::string& scene_name,
+               const std::string& set_name, Query query, const std::vector<Ray>& rays, int threads,
+               int repeat) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    std::size_t(threads));
+    SetRun run{scene_name, set_name, query, rays.size(), threads, {}};
+    std::vector<std::vector<Hit>> hits(variants.size(), std::vector<Hit>(rays.size()));
+    for (const Variant& v : variants) {
+        run.methods.emplace_back();
+        run.methods.back().label = v.label;
+        run.methods.back().method = v.method;
+    }
+    for (int r = 0; r < repeat; ++r)
+        for (std::size_t i = 0; i < variants.size(); ++i) {
+            MethodRun& m = run.methods[i];
+            const auto tracer = make_tracer(variants[i].method, EdacrtParams{}, variants[i].mode);
+            auto start = std::chrono::steady_clock::now();
+            tracer->set_scene(scene);
+            m.prepare_seconds.push_back(seconds_since(start));
+            start = std::chrono::steady_clock::now();
+            m.stats = tracer->trace(rays, hits[i], query);
+            m.trace_seconds.push_back(seconds_since(start));
+            m.working_bytes = std::max(m.working_bytes, tracer->working_bytes());
+        }
+    const std::size_t ref = reference_index(variants);
+    run.methods[ref].reference = true;
+    for (std::size_t i = 0; i < variants.size(); ++i)
+        if (i != ref)
+            run.methods[i].agreement = compare_hits(
+                triangles, rays, hits[ref], hits[i], query,
+                variants[i].method != Method::embree && variants[ref].method != Method::embree);
+    return run;
+}
+
+/// The --json and --markdown files, when asked for.
+void write_outputs(const BenchOptions& o, const std::vector<int>& thread_counts,
+                   const nlohmann::json& scenes_json, const nlohmann::json& rows_json,
+                   const std::vector<Row>& rows, bool agreement_ok) {
+    const nlohmann::json machine = machine_json();
+    if (!o.json_path.empty()) {
+        nlohmann::json settings = {{"width", o.width},
+                                   {"height", o.height},
+                                   {"spp", o.spp},
+                                   {"sets", o.sets},
+                                   {"methods", o.methods},
+                                   {"repeat", o.repeat},
+                                   {"threads", thread_counts},
+                                   {"seed", o.seed},
+                                   {"edacrt_params", "default preset"},
+                                   {"ao_distance_fraction_of_diagonal", kAoDistanceFraction}};
+        write_file(o.json_path,
+                   nlohmann::json{{"command", "bench"},
+                                  {"machine", machine},
+                                  {"settings", settings},
+                                  {"scenes", scenes_json},
+                                  {"results", rows_json},
+                                  {"agreement_ok", agreement_ok}}
+                           .dump(2) +
+                       "\n",
+                   "benchmark JSON");
+    }
+    if (!o.markdown_path.empty())
+        write_file(o.markdown_path,
+                   "`edacrt bench`, " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                       " pixels, median of " + std::to_string(o.repeat) + " frames (set_scene + " +
+                       "trace); " + machine["cpu"].get<std::string>() + ", " +
+                       machine["date"].get<std::string>() + ", revision " +
+                       machine["git_revision"].get<std::string>() + ".\n\n" +
+                       markdown_table(rows, thread_counts.size() > 1),
+                   "benchmark markdown");
+}
+
+void run(const BenchOptions& o) {
+    const std::vector<Variant> variants = make_variants(o.methods);
+    const std::vector<SetChoice> sets = make_set_choices(o);
+    check_memory(o, variants.size());
+    check_writable(o.json_path, "--json");
+    check_writable(o.markdown_path, "--markdown");
+    const bool named = !o.scenes.empty();
+    const std::vector<BenchScene> scenes =
+        resolve_bench_scenes(named ? o.scenes : default_bench_scene_names(),
+                             o.scenes_dir.empty() ? default_scenes_dir(EDACRT_SOURCE_DIR)
+                                                  : std::filesystem::path(o.scenes_dir),
+                             named || !o.scenes_dir.empty());
+    if (scenes.empty()) throw InputError("no scene to measure (all were skipped)");
+
+    const int all_threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+    std::vector<int> thread_counts = {all_threads};
+    if (o.thread_sweep && all_threads > 1) thread_counts.insert(thread_counts.begin(), 1);
+    const bool sweep = thread_counts.size() > 1;
+
+    nlohmann::json scenes_json = nlohmann::json::array(), rows_json = nlohmann::json::array();
+    std::vector<SetRun> runs;
+    runs.reserve(scenes.size() * sets.size() * thread_counts.size());  // rows point into it
+    std::vector<Row> rows;
+    std::uint64_t disagreements = 0;
+    std::cout << table_header(sweep);
+    for (const BenchScene& bench_scene : scenes) {
+        const Scene scene = load_scene_verbose(bench_scene.spec);
+        if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
+        const BenchView view = bench_view(scene, bench_scene.name);
+        std::cerr << "bench: " << bench_scene.name << ": " << (view.inside ? "inside" : "outside")
+                  << " view, " << view.reason << "\n";
+        const BenchRays bench_rays(scene, view.camera, o.width, o.height, o.seed);
+        const auto vec = [](glm::vec3 v) { return nlohmann::json{v.x, v.y, v.z}; };
+        scenes_json.push_back({{"name", bench_scene.name},
+                               {"source", scene.source},
+                               {"triangles", scene.triangle_count()},
+                               {"view",
+                                {{"inside", view.inside},
+                                 {"reason", view.reason},
+                                 {"eye", vec(view.camera.eye)},
+                                 {"look_at", vec(view.camera.look_at)},
+                                 {"up", vec(view.camera.up)},
+                                 {"vfov_degrees", view.camera.vfov_degrees}}},
+                               {"shadow_light", bench_rays.light()}});
+        const std::vector<Triangle> triangles = gather_triangles(scene);
+        for (const SetChoice& set : sets) {
+            const std::vector<Ray> rays = make_rays(bench_rays, set);
+            const Query query = set.kind == RaySetKind::ao || set.kind == RaySetKind::shadow
+                                    ? Query::any
+                                    : Query::closest;
+            for (int threads : thread_counts) {
+                std::cerr << "bench: " << bench_scene.name << " " << set.name << ", " << rays.size()
+                          << " rays, " << threads << " thread(s)\n";
+                runs.push_back(run_set(scene, triangles, variants, bench_scene.name, set.name,
+                                       query, rays, threads, o.repeat));
+            }
+            // Print once every thread count of the set is in (the scaling needs both).
+            const SetRun* single = sweep ? &runs[runs.size() - thread_counts.size()] : nullptr;
+            for (std::size_t k = runs.size() - thread_counts.size(); k < runs.size(); ++k)
+                for (const Row& row : make_rows(runs[k], &runs[k] == single ? nullptr : single)) {
+                    rows.push_back(row);
+                    rows_json.push_back(row_json(row));
+                    if (row.shown) std::cout << table_row(row, sweep) << std::flush;
+                    if (row.method->agreement.disagreements) {
+                        disagreements += row.method->agreement.disagreements;
+                        std::cerr << "bench: DISAGREEMENT: " << row.method->label << " differs "
+                                  << "from the reference on " << row.method->agreement.disagreements
+                                  << " rays of " << row.run->scene << " " << row.run->set
+                                  << " (first: ray " << row.method->agreement.first_disagreement
+                                  << ")\n";
+                    }
+                }
+        }
+    }
+
+    write_outputs(o, thread_counts, scenes_json, rows_json, rows, disagreements == 0);
+    if (disagreements)
+        throw std::runtime_error("the methods disagree on " + std::to_string(disagreements) +
+                                 " rays (see DISAGREEMENT above)");
+}
+
+}  // namespace
+
+std::function<void()> add_bench_command(CLI::App& app) {
+    auto options = std::make_shared<BenchOptions>();
+    BenchOptions& o = *options;
+    CLI::App* command = app.add_subcommand(
+        "bench",
+        "Time every method on the same rays, frame by frame: set_scene() (per-frame "
+        "structures) plus trace(), nothing kept between frames, repetitions interleaved across "
+        "methods; then check that all methods found the same hits (exit 2 if not).\n"
+        "Example: edacrt bench --scene bunny --width 256 --height 256 --json out/bench.json");
+    command->add_option("--scenes", o.scenes_dir,
+                        "directory of the large scenes (default: $EDACRT_SCENES, else "
+                        "../shared/scenes beside the repository)");
+    command->add_option("--scene", o.scenes,
+                        "a scene to measure (repeatable): bunny, dragon, buddha, suzanne, sponza, "
+                        "sibenik, conference, cornell, spot, teapot, an OBJ path or builtin:... "
+                        "(default: bunny, sponza, sibenik, conference, cornell, spot, teapot; "
+                        "absent ones are skipped)");
+    command->add_option("--sets", o.sets, "ray sets: camera, diffuse, ao, shadow")
+        ->delimiter(',')
+        ->capture_default_str();
+    command->add_option("--spp", o.spp, "samples per pixel of the camera sets, one set each")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 1024))
+        ->capture_default_str();
+    command
+        ->add_option("--methods", o.methods,
+                     "methods: edacrt, dacrt, bvh, embree (all three modes, the fastest is the "
+                     "ratio base), naive (slow)")
+        ->delimiter(',')
+        ->capture_default_str();
+    command->add_option("--width", o.width, "pixels per row")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    command->add_option("--height", o.height, "rows")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    command->add_option("--repeat", o.repeat, "frames per method and set (median and min)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    command->add_option("--threads", o.threads, "worker threads (0: all cores)")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+    command->add_flag("--thread-sweep", o.thread_sweep,
+                      "also run on 1 thread and report time(1 thread) / time(--threads)");
+    command->add_option("--seed", o.seed, "seed of the jitter, bounces and light samples")
+        ->capture_default_str();
+    command->add_option("--json", o.json_path, "write every measurement and the machine here");
+    command->add_option("--markdown", o.markdown_path, "write the table as markdown here");
+    return [options] { run(*options); };
+}
+
+}  // namespace edacrt::cli

@@ -1,0 +1,161 @@
+// edacrt bench: every method and ray set in the JSON, the methods agree, bad parameters fail
+// with a message. Tiny images and one repetition keep it fast.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cli_runner.h"
+#include "test_paths.h"
+
+namespace edacrt {
+namespace {
+
+class BenchCli : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = std::filesystem::temp_directory_path() /
+               ("edacrt_bench_cli_" + std::to_string(::getpid()));
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    nlohmann::json read_json(const std::string& name) const {
+        std::ifstream in(path(name));
+        return nlohmann::json::parse(in);
+    }
+
+    std::filesystem::path dir_;
+};
+
+std::string slurp(const std::string& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST_F(BenchCli, EveryMethodAndSetAgree) {
+    const auto result = test::run_cli("bench --scene cornell --width 24 --height 16 --repeat 1 " +
+                                      std::string("--json ") + path("bench.json") + " --markdown " +
+                                      path("bench.md"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json json = read_json("bench.json");
+    EXPECT_TRUE(json["agreement_ok"].get<bool>());
+    EXPECT_FALSE(json["machine"]["cpu"].get<std::string>().empty());
+    EXPECT_FALSE(json["machine"]["date"].get<std::string>().empty());
+    ASSERT_EQ(json["scenes"].size(), 1u);
+    EXPECT_EQ(json["scenes"][0]["shadow_light"], "emissive triangles");
+
+    std::set<std::string> methods = {"edacrt", "dacrt", "bvh"};
+#ifdef EDACRT_HAS_EMBREE
+    methods.insert({"embree/packet8", "embree/single", "embree/stream"});
+#endif
+    const std::set<std::string> sets = {"camera-1spp", "camera-4spp", "camera-16spp",
+                                        "diffuse",     "ao",          "shadow"};
+    std::set<std::pair<std::string, std::string>> seen;
+    for (const nlohmann::json& row : json["results"]) {
+        seen.insert({row["set"].get<std::string>(), row["method"].get<std::string>()});
+        EXPECT_EQ(row["agreement"]["disagreements"], 0) << row.dump();
+        EXPECT_GT(row["mrays_per_second_frame"].get<double>(), 0.0) << row.dump();
+        EXPECT_EQ(row["trace_seconds"].size(), 1u);
+        EXPECT_GT(row["working_bytes"].get<double>(), 0.0) << row.dump();
+        const bool embree = row["method"].get<std::string>().starts_with("embree");
+        EXPECT_EQ(row["triangle_tests_per_ray"].is_null(), embree) << row.dump();
+        EXPECT_EQ(row["frame_time_per_best_embree"].is_null(), !methods.contains("embree/packet8"));
+        const std::size_t pixels = 24 * 16;
+        if (row["set"] == "camera-16spp") {
+            EXPECT_EQ(row["rays"], 16 * pixels);
+        }
+        if (row["set"] == "ao") {
+            EXPECT_EQ(row["query"], "any");
+        }
+    }
+    for (const std::string& set : sets)
+        for (const std::string& method : methods)
+            EXPECT_TRUE(seen.contains({set, method})) << set << " " << method;
+    EXPECT_NE(slurp(path("bench.md")).find("| scene | set |"), std::string::npos);
+    EXPECT_NE(result.output.find("frame ms"), std::string::npos) << result.output;
+}
+
+TEST_F(BenchCli, ThreadSweepReportsScaling) {
+    const auto result = test::run_cli(
+        "bench --scene builtin:sphere:subdiv=3 --sets camera --spp 1 --methods bvh,naive "
+        "--width 16 --height 16 --repeat 1 --threads 2 --thread-sweep --json " +
+        path("sweep.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("warning: naive"), std::string::npos) << result.output;
+    std::set<int> threads;
+    const nlohmann::json json = read_json("sweep.json");
+    for (const nlohmann::json& row : json["results"]) {
+        threads.insert(row["threads"].get<int>());
+        EXPECT_EQ(row["scaling_1_thread_over_n"].is_null(), row["threads"] == 1) << row.dump();
+    }
+    EXPECT_EQ(threads, (std::set<int>{1, 2}));
+}
+
+TEST_F(BenchCli, AbsentScenesAreSkipped) {
+    const auto result = test::run_command(
+        "EDACRT_SCENES=" + path("no-such-dir") + " '" + test::cli_path().string() +
+        "' bench --sets camera --spp 1 --methods bvh --width 8 --height 8 "
+        "--repeat 1 --json " +
+        path("skip.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("skipping bunny"), std::string::npos) << result.output;
+    std::set<std::string> names;
+    const nlohmann::json json = read_json("skip.json");
+    for (const nlohmann::json& scene : json["scenes"])
+        names.insert(scene["name"].get<std::string>());
+    EXPECT_EQ(names, (std::set<std::string>{"cornell", "spot", "teapot"}));
+}
+
+TEST_F(BenchCli, InteriorsAreViewedFromInside) {
+    if (const std::string why = test::missing_scene("sponza/sponza.obj"); !why.empty())
+        GTEST_SKIP() << why;
+    const auto result = test::run_cli(
+        "bench --scene sponza --scene spot --sets camera --spp 1 --methods bvh --width 8 "
+        "--height 8 --repeat 1 --json " +
+        path("views.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json scenes = read_json("views.json")["scenes"];
+    ASSERT_EQ(scenes.size(), 2u);
+    EXPECT_TRUE(scenes[0]["view"]["inside"].get<bool>()) << scenes[0].dump();
+    EXPECT_FALSE(scenes[1]["view"]["inside"].get<bool>()) << scenes[1].dump();
+}
+
+TEST_F(BenchCli, BadParametersFailWithAMessage) {
+    const std::string quick = "bench --scene cornell --width 8 --height 8 --repeat 1 ";
+    struct Case {
+        std::string args, message;
+    };
+    const Case cases[] = {
+        {quick + "--spp 0", "--spp"},
+        {quick + "--repeat 0", "--repeat"},
+        {quick + "--sets camera,bogus", "unknown ray set 'bogus'"},
+        {quick + "--methods edacrt,bogus", "unknown method 'bogus'"},
+        {quick + "--width 0", "--width"},
+        {"bench --scenes " + path("missing") + " --scene bunny --repeat 1", "not found"},
+        {"bench --scene " + path("missing.obj"), "neither a known scene name"},
+        {quick + "--json " + path("no-dir/out.json"), "--json"},
+        {quick + "--markdown " + path("no-dir/out.md"), "--markdown"},
+        {"bench --scene cornell --width 16384 --height 16384 --spp 1,4", "choose a smaller"},
+    };
+    for (const Case& c : cases) {
+        const auto result = test::run_cli(c.args);
+        EXPECT_NE(result.exit_code, 0) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.args << "\n"
+                                                                    << result.output;
+    }
+}
+
+TEST_F(BenchCli, RefusesWhatCannotFitInMemory) {
+    const auto result =
+        test::run_command("EDACRT_MEMORY_LIMIT=1000000 '" + test::cli_path().string() +
+                          "' bench --scene cornell --width 512 --height 512 --repeat 1");
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("EDACRT_MEMORY_LIMIT"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace edacrt

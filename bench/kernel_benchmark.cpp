@@ -1,0 +1,229 @@
+// Google Benchmark of the divide-and-conquer kernels, each against the scalar code it replaced,
+// on the rays and triangles of a closed sphere seen from outside (camera-like rays aimed at it):
+//   filter     the in-place 8-wide partition of a ray stream by a box (filter_rays) against a
+//              stable partition of ray ids with the scalar slab test;
+//   sampling   one ray against the 2(K-1) = 14 candidate boxes of K = 8 bins, 8 at a time
+//              (intersect_box8) against 14 scalar tests;
+//   leaf       one ray against 16 triangles, 8 at a time (intersect_triangle8) against 16
+//              scalar watertight tests;
+//   partition  the triangles' stable partition by bin (the recursion's triangle split).
+//   build/edacrt_kernel_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "geometry/binning.h"
+#include "geometry/ray_box8.h"
+#include "geometry/triangle8.h"
+#include "scene/builtin_scenes.h"
+#include "trace/ray_filter.h"
+#include "trace/ray_stream.h"
+#include "trace/stable_partition.h"
+#include "trace/tracer.h"
+
+namespace edacrt {
+namespace {
+
+struct Data {
+    std::vector<Triangle> triangles;
+    std::vector<Ray> rays;  // from a sphere of radius 3 towards random points of radius 0.8
+};
+
+const Data& data() {
+    static const Data d = [] {
+        Data d;
+        d.triangles = gather_triangles(make_builtin_scene("builtin:sphere:subdiv=5"));
+        std::mt19937 rng(1);
+        std::normal_distribution<float> normal;
+        const auto on_sphere = [&](float radius) {
+            const glm::vec3 v(normal(rng), normal(rng), normal(rng));
+            return radius * v / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+        };
+        for (int i = 0; i < (1 << 20); ++i) {
+            const glm::vec3 org = on_sphere(3.0f);
+            d.rays.push_back({org, on_sphere(0.8f) - org, 0.0f, kInfinity});
+        }
+        return d;
+    }();
+    return d;
+}
+
+const Aabb kHalf{glm::vec3(-1.0f, -1.0f, -1.0f), glm::vec3(0.0f, 1.0f, 1.0f)};
+
+void filter_stream(benchmark::State& state) {
+    const std::size_t n = std::size_t(state.range(0));
+    const std::span<const Ray> rays(data().rays.data(), n);
+    RayStreamStorage storage;
+    const RayStream stream = storage.fill(rays);
+    // Each partition only reorders the rays, so every iteration does the same work.
+    for (auto _ : state) benchmark::DoNotOptimize(filter_rays(stream, 0, n, kHalf));
+    state.SetItemsProcessed(std::int64_t(n) * state.iterations());
+}
+
+void filter_scalar(benchmark::State& state) {
+    const std::size_t n = std::size_t(state.range(0));
+    std::vector<SlabRay> slabs;
+    for (std::size_t i = 0; i < n; ++i) slabs.push_back(make_slab_ray(data().rays[i]));
+    std::vector<float> t_far(n, kInfinity);
+    std::vector<std::uint32_t> ids(n);
+    for (std::size_t i = 0; i < n; ++i) ids[i] = std::uint32_t(i);
+    PartitionScratch scratch;
+    scratch.reserve(n);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(partition(ids.data(), n, scratch, [&](std::uint32_t r) {
+            float entry;
+            return intersect_box(slabs[r], kHalf, t_far[r], entry);
+        }));
+    state.SetItemsProcessed(std::int64_t(n) * state.iterations());
+}
+
+/// The 7 left and 7 right candidate boxes of 8 bins across [-1, 1] on x.
+std::vector<Aabb> candidates() {
+    std::vector<Aabb> boxes;
+    for (int side = 0; side < 2; ++side)
+        for (int j = 0; j < 7; ++j) {
+            const float plane = -1.0f + 2.0f * float(j + 1) / 8.0f;
+            boxes.push_back(side == 0 ? Aabb{glm::vec3(-1.0f), glm::vec3(plane, 1.0f, 1.0f)}
+                                      : Aabb{glm::vec3(plane, -1.0f, -1.0f), glm::vec3(1.0f)});
+        }
+    return boxes;
+}
+
+void sampling8(benchmark::State& state) {
+    const std::vector<Aabb> boxes = candidates();
+    Aabb8 blocks[2];
+    for (int side = 0; side < 2; ++side) {
+        alignas(32) float lanes[6][8];
+        for (int l = 0; l < 8; ++l) {
+            const Aabb box = l < 7 ? boxes[std::size_t(7 * side + l)] : Aabb{};
+            for (int k = 0; k < 3; ++k) {
+                lanes[k][l] = box.lo[k];
+                lanes[3 + k][l] = box.hi[k];
+            }
+        }
+        for (int k = 0; k < 3; ++k) {
+            blocks[side].lo[k] = _mm256_load_ps(lanes[k]);
+            blocks[side].hi[k] = _mm256_load_ps(lanes[3 + k]);
+        }
+    }
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const SlabRay8 ray = broadcast(make_slab_ray(data().rays[i++ & 0xfffff]), kInfinity);
+        __m256 entry[2];
+        const __m256 left = intersect_box8(ray, blocks[0], entry[0]);
+        const __m256 right = intersect_box8(ray, blocks[1], entry[1]);
+        benchmark::DoNotOptimize(left);
+        benchmark::DoNotOptimize(right);
+        benchmark::DoNotOptimize(entry);
+    }
+    state.SetItemsProcessed(14 * state.iterations());
+}
+
+void sampling_scalar(benchmark::State& state) {
+    const std::vector<Aabb> boxes = candidates();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const SlabRay ray = make_slab_ray(data().rays[i++ & 0xfffff]);
+        unsigned hits = 0;
+        for (const Aabb& box : boxes) {
+            float entry;
+            hits += intersect_box(ray, box, kInfinity, entry);
+            benchmark::DoNotOptimize(entry);
+        }
+        benchmark::DoNotOptimize(hits);
+    }
+    state.SetItemsProcessed(14 * state.iterations());
+}
+
+/// 16 neighbouring triangles of the sphere, and rays aimed at them.
+struct Leaf {
+    std::vector<Triangle> triangles;
+    TriangleBlock8 blocks[2];
+    std::vector<Ray> rays;
+};
+
+const Leaf& leaf() {
+    static const Leaf l = [] {
+        Leaf l;
+        const std::vector<Triangle>& all = data().triangles;
+        l.triangles.assign(all.begin(), all.begin() + 16);
+        for (std::size_t k = 0; k < 16; ++k) {
+            const Triangle& t = l.triangles[k];
+            const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
+        }
+        std::mt19937 rng(2);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        for (int i = 0; i < 4096; ++i) {
+            const Triangle& t = l.triangles[rng() % 16];
+            const float a = unit(rng), b = unit(rng) * (1.0f - a);
+            const glm::vec3 target = t.p0 + a * (t.p1 - t.p0) + b * (t.p2 - t.p0);
+            const glm::vec3 org = 3.0f * target + glm::vec3(0.1f * unit(rng));
+            l.rays.push_back({org, target - org, 0.0f, kInfinity});
+        }
+        return l;
+    }();
+    return l;
+}
+
+void leaf8(benchmark::State& state) {
+    const Leaf& l = leaf();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Ray& ray = l.rays[i++ & 4095];
+        const WatertightRay w = make_watertight_ray(ray);
+        TriangleLanes8 lanes[2];
+        for (int b = 0; b < 2; ++b)
+            intersect_triangle8(w, l.blocks[b], 0xffu, ray.tmin, ray.tmax, lanes[b]);
+        benchmark::DoNotOptimize(lanes);
+    }
+    state.SetItemsProcessed(16 * state.iterations());
+}
+
+void leaf_scalar(benchmark::State& state) {
+    const Leaf& l = leaf();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const Ray& ray = l.rays[i++ & 4095];
+        const WatertightRay w = make_watertight_ray(ray);
+        float t_far = ray.tmax;
+        for (const Triangle& t : l.triangles) {
+            TriangleHit hit;
+            if (intersect_triangle(w, t, ray.tmin, t_far, hit)) t_far = hit.t;
+        }
+        benchmark::DoNotOptimize(t_far);
+    }
+    state.SetItemsProcessed(16 * state.iterations());
+}
+
+void partition_triangles(benchmark::State& state) {
+    const std::vector<Triangle>& tris = data().triangles;
+    const std::size_t n = tris.size();
+    std::vector<glm::vec3> centroids;
+    for (const Triangle& t : tris) centroids.push_back(centroid(t));
+    std::vector<std::uint32_t> ids(n);
+    PartitionScratch scratch;
+    scratch.reserve(n);
+    for (auto _ : state) {
+        for (std::size_t i = 0; i < n; ++i) ids[i] = std::uint32_t(i);
+        benchmark::DoNotOptimize(partition(ids.data(), n, scratch, [&](std::uint32_t t) {
+            return bin_index((centroids[t].x + 1.0f) * 4.0f, 8) <= 3;
+        }));
+    }
+    state.SetItemsProcessed(std::int64_t(n) * state.iterations());
+}
+
+BENCHMARK(filter_stream)->Arg(4096)->Arg(1 << 20)->UseRealTime();
+BENCHMARK(filter_scalar)->Arg(4096)->Arg(1 << 20)->UseRealTime();
+BENCHMARK(sampling8);
+BENCHMARK(sampling_scalar);
+BENCHMARK(leaf8);
+BENCHMARK(leaf_scalar);
+BENCHMARK(partition_triangles)->UseRealTime();
+
+}  // namespace
+}  // namespace edacrt
+
+BENCHMARK_MAIN();

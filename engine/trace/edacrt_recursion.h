@@ -526,7 +526,7 @@ class Recursion {
     }
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.
-    static constexpr std::size_t kParallelLeafTests = 32768;
+    static constexpr std::size_t kParallelLeafTests = 8192;
 
     const EdacrtParams& p_;
     const EdacrtScene& scene_;

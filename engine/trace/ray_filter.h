@@ -7,9 +7,9 @@
 
 namespace edacrt {
 
-/// Ranges of at least this many rays are filtered in parallel, in fixed blocks of this size
-/// (so the result is the same for any thread count).
-inline constexpr std::size_t kParallelFilterRays = 16384;
+/// Ranges of at least two blocks are filtered in parallel, in fixed blocks of this many rays
+/// (so the result is the same for any thread count): about 10 us of work each.
+inline constexpr std::size_t kParallelFilterRays = 4096;
 
 /// Moves the rays of [begin, begin + count) that reach `box` before their t_far (intersect_box)
 /// to the front of the range and returns how many there are. Not stable, but deterministic.

@@ -74,6 +74,12 @@ struct ShearedTriangles8 {
     const __m256 outside =
         all(any(cmp<_CMP_LT_OQ>(u, zero), cmp<_CMP_LT_OQ>(v, zero), cmp<_CMP_LT_OQ>(w, zero)),
             any(cmp<_CMP_GT_OQ>(u, zero), cmp<_CMP_GT_OQ>(v, zero), cmp<_CMP_GT_OQ>(w, zero)));
+    // Most lanes miss: skip the distance where no lane's line passes through its triangle.
+    const unsigned edges = unsigned(_mm256_movemask_ps(undecided_edges));
+    if ((valid & (edges | ~unsigned(_mm256_movemask_ps(outside)))) == 0) {
+        out.accepted = out.scalar = 0;
+        return;
+    }
     // decide_distance
     const __m256 det = add(add(u, v), w);
     const __m256 inv_det = _mm256_div_ps(set(1.0f), det);
@@ -109,7 +115,6 @@ struct ShearedTriangles8 {
     const __m256 trusted = all(cmp<_CMP_LE_OQ>(error, mul(t, set(kTrustedDistanceError))),
                                cmp<_CMP_LT_OQ>(t, set(kInfinity)));
     const __m256 in_range = all(cmp<_CMP_GE_OQ>(t, lo), cmp<_CMP_LE_OQ>(t, hi));
-    const unsigned edges = unsigned(_mm256_movemask_ps(undecided_edges));
     // The line passes through the triangle and the distance was not rejected outright.
     const unsigned through = ~unsigned(_mm256_movemask_ps(any(outside, rejected))) & 0xffu;
     const unsigned trusted_lanes = unsigned(_mm256_movemask_ps(trusted));

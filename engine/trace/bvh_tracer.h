@@ -2,27 +2,24 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/aabb.h"
+#include "trace/bvh_build.h"
 #include "trace/tracer.h"
 
 namespace edacrt {
 
-/// Baseline with a stored structure: a binned-SAH BVH (Wald, "On fast Construction of
-/// SAH-based Bounding Volume Hierarchies", 2007), built in set_scene() (per frame), traversed
-/// per ray with a stack, nearer child first.
+/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) built in
+/// set_scene() (per frame), traversed per ray with a stack, nearer child first, skipping nodes
+/// that start beyond the nearest hit so far.
 class BvhTracer final : public Tracer {
   public:
+    using Node = BvhNode;
+
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
 
-    /// A node is a leaf when count > 0 (triangles prims[first, first + count)); otherwise its
-    /// children are nodes first and first + 1.
-    struct Node {
-        Aabb box;
-        std::uint32_t first = 0;
-        std::uint32_t count = 0;
-    };
-    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<Node>& nodes() const { return bvh_.nodes; }
+    /// The triangle of each reference, grouped by leaf.
+    const std::vector<std::uint32_t>& prims() const { return bvh_.prims; }
 
   protected:
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
@@ -32,9 +29,8 @@ class BvhTracer final : public Tracer {
     template <Query Q>
     TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
 
-    std::vector<Triangle> triangles_;
-    std::vector<std::uint32_t> prims_;  // triangle numbers, grouped by leaf
-    std::vector<Node> nodes_;
+    Bvh bvh_;
+    std::vector<Triangle> leaf_triangles_;  // the triangle of each reference, in prims order
 };
 
 }  // namespace edacrt

@@ -5,8 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
-#include "geometry/ray_box.h"
+#include "geometry/ray_box8.h"
 #include "trace/bvh_presplit.h"
 
 namespace edacrt {
@@ -16,20 +17,29 @@ namespace {
 /// camera rays from inside, 0.3 halves the triangle tests per ray against no pre-splitting.
 constexpr float kPresplitExtra = 0.3f;
 
+/// The children a node holds (its lanes with a box), for the box-test counters.
+int lane_count(const Bvh8Node& node) {
+    const __m256 lo_x = _mm256_load_ps(node.boxes.lo[0]);
+    return std::popcount(
+        unsigned(_mm256_movemask_ps(_mm256_cmp_ps(lo_x, _mm256_set1_ps(kInfinity), _CMP_NEQ_OQ))));
+}
+
 }  // namespace
 
 void BvhTracer::set_scene(const Scene& scene) {
     const std::vector<Triangle> triangles = gather_triangles(scene);
     const std::vector<BvhReference> references = presplit_references(triangles, kPresplitExtra);
-    bvh_ = build_bvh(references);
-    leaf_triangles_.resize(bvh_.prims.size());
-    for (std::size_t k = 0; k < bvh_.prims.size(); ++k)
-        leaf_triangles_[k] = triangles[bvh_.prims[k]];
+    Bvh bvh = build_bvh(references);
+    wide_ = collapse_bvh8(bvh.nodes);
+    bvh_prims_ = std::move(bvh.prims);
+    leaf_triangles_.resize(bvh_prims_.size());
+    for (std::size_t k = 0; k < bvh_prims_.size(); ++k)
+        leaf_triangles_[k] = triangles[bvh_prims_[k]];
 }
 
 TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                   TraceDetail* detail) {
-    if (bvh_.nodes.empty()) {  // no triangles
+    if (wide_.empty()) {  // no triangles
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};
     }
@@ -42,55 +52,73 @@ template <Query Q>
 TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
                                 RayStats* ray_stats) const {
     const auto trace_range = [&](const tbb::blocked_range<std::size_t>& range, TraceStats stats) {
-        struct Entry {
-            std::uint32_t node;
+        struct Entry {  // a child lane: an inner node, or a leaf when count > 0
+            std::uint32_t child;
+            std::uint32_t count;
             float t_entry;
         };
-        std::array<Entry, kBvhMaxDepth + 1> stack;
+        std::array<Entry, 7 * kBvhMaxDepth + 1> stack;  // a node pushes at most 7 siblings
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const Ray& ray = rays[i];
-            const SlabRay sray = make_slab_ray(ray);
+            const SlabRay8 sray = make_slab_ray8(make_slab_ray(ray));
             const WatertightRay wray = make_watertight_ray(ray);
             Hit& hit = hits[i] = Hit{};
             float t_far = ray.tmax;
+            std::uint32_t box_tests = 0, triangle_tests = 0;
+            Entry current{0, 0, ray.tmin};
             int top = 0;
-            std::uint32_t box_tests = 1, triangle_tests = 0;
-            if (float t_entry; intersect_box(sray, bvh_.nodes[0].box, t_far, t_entry))
-                stack[top++] = {0, t_entry};
-            while (top > 0) {
-                const auto [index, t_entry] = stack[--top];
-                if (t_entry > t_far) continue;  // behind a hit found since it was pushed
-                const Node& node = bvh_.nodes[index];
-                if (node.count == 0) {  // inner: the nearer child goes on top
-                    float t_left = 0.0f, t_right = 0.0f;
-                    box_tests += 2;
-                    const bool left =
-                        intersect_box(sray, bvh_.nodes[node.first].box, t_far, t_left);
-                    const bool right =
-                        intersect_box(sray, bvh_.nodes[node.first + 1].box, t_far, t_right);
-                    const Entry left_entry{node.first, t_left},
-                        right_entry{node.first + 1, t_right};
-                    if (left && right) {
-                        const bool right_nearer = t_right < t_left;
-                        stack[top++] = right_nearer ? left_entry : right_entry;
-                        stack[top++] = right_nearer ? right_entry : left_entry;
-                    } else if (left || right) {
-                        stack[top++] = left ? left_entry : right_entry;
-                    }
-                    continue;
-                }
-                TriangleHit candidate;
-                for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-                    ++triangle_tests;
-                    if (!intersect_triangle(wray, leaf_triangles_[k], ray.tmin, t_far, candidate))
+            for (;;) {
+                if (current.count == 0) {  // inner: the nearest child next, the others stacked
+                    const Bvh8Node& node = wide_[current.child];
+                    __m256 t_entry;
+                    int mask = intersect_boxes8(sray, node.boxes, t_far, t_entry);
+                    box_tests += lane_count(node);
+                    if (mask != 0) {
+                        alignas(32) float t[8];
+                        _mm256_store_ps(t, t_entry);
+                        const auto entry = [&](int lane) {
+                            return Entry{node.child[lane], node.count[lane], t[lane]};
+                        };
+                        const int first = std::countr_zero(unsigned(mask));
+                        mask &= mask - 1;
+                        if (mask == 0) {
+                            current = entry(first);
+                            continue;
+                        }
+                        // Insertion sort, farthest at the bottom: at most 8 entries.
+                        const int bottom = top;
+                        stack[top++] = entry(first);
+                        for (; mask != 0; mask &= mask - 1) {
+                            const Entry e = entry(std::countr_zero(unsigned(mask)));
+                            int k = top++;
+                            for (; k > bottom && stack[k - 1].t_entry < e.t_entry; --k)
+                                stack[k] = stack[k - 1];
+                            stack[k] = e;
+                        }
+                        current = stack[--top];
                         continue;
-                    hit = {candidate.t, std::int32_t(bvh_.prims[k]), candidate.u, candidate.v};
-                    t_far = candidate.t;
-                    if constexpr (Q == Query::any) {  // done: drop the rest of the stack
-                        top = 0;
-                        break;
                     }
+                } else {
+                    TriangleHit candidate;
+                    bool done = false;
+                    for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
+                        ++triangle_tests;
+                        if (!intersect_triangle(wray, leaf_triangles_[k], ray.tmin, t_far,
+                                                candidate))
+                            continue;
+                        hit = {candidate.t, std::int32_t(bvh_prims_[k]), candidate.u, candidate.v};
+                        t_far = candidate.t;
+                        if constexpr (Q == Query::any) {
+                            done = true;
+                            break;
+                        }
+                    }
+                    if (done) break;
                 }
+                // The next stacked child that starts before the nearest hit so far.
+                while (top > 0 && stack[top - 1].t_entry > t_far) --top;
+                if (top == 0) break;
+                current = stack[--top];
             }
             stats.ray_box_tests += box_tests;
             stats.ray_triangle_tests += triangle_tests;

@@ -2,24 +2,23 @@
 #include <cstdint>
 #include <vector>
 
-#include "trace/bvh_build.h"
+#include "trace/bvh_wide.h"
 #include "trace/tracer.h"
 
 namespace edacrt {
 
-/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) built in
-/// set_scene() (per frame), traversed per ray with a stack, nearer child first, skipping nodes
+/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) over pre-split
+/// triangles (bvh_presplit.h), built in set_scene() (per frame) and collapsed to 8 children per
+/// node (bvh_wide.h); traversed per ray with a stack, nearest child first, skipping children
 /// that start beyond the nearest hit so far.
 class BvhTracer final : public Tracer {
   public:
-    using Node = BvhNode;
-
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
 
-    const std::vector<Node>& nodes() const { return bvh_.nodes; }
+    const std::vector<Bvh8Node>& nodes() const { return wide_; }
     /// The triangle of each reference, grouped by leaf.
-    const std::vector<std::uint32_t>& prims() const { return bvh_.prims; }
+    const std::vector<std::uint32_t>& prims() const { return bvh_prims_; }
 
   protected:
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
@@ -29,7 +28,8 @@ class BvhTracer final : public Tracer {
     template <Query Q>
     TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
 
-    Bvh bvh_;
+    std::vector<Bvh8Node> wide_;
+    std::vector<std::uint32_t> bvh_prims_;
     std::vector<Triangle> leaf_triangles_;  // the triangle of each reference, in prims order
 };
 

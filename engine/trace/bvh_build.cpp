@@ -3,7 +3,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 
 #include "geometry/binning.h"
@@ -11,7 +10,6 @@
 namespace edacrt {
 namespace {
 
-constexpr int kMaxBins = 64;
 constexpr std::uint32_t kParallelSubtree = 4096;  // references; smaller subtrees run serially
 constexpr int kMedianDepth = kBvhMaxDepth - 16;   // from here on, halve: 2^16 refs still fit
 
@@ -30,16 +28,9 @@ struct Split {
 class Builder {
   public:
     Builder(std::span<const BvhReference> references, const BvhBuildOptions& options)
-        : references_(references),
-          options_(options),
-          centroids_(references.size()),
-          order_(references.size()),
-          slots_(2 * references.size() - 1) {
-        for (std::size_t i = 0; i < references.size(); ++i) {
-            centroids_[i] = references[i].box.center();
-            order_[i] = std::uint32_t(i);
-        }
-    }
+        : options_(options),
+          references_(references.begin(), references.end()),
+          slots_(2 * references.size() - 1) {}
 
     Bvh build() {
         Aabb box;
@@ -49,13 +40,13 @@ class Builder {
         bvh.nodes.reserve(slots_.size());
         bvh.nodes.push_back(slots_[0]);
         compact(0, 0, bvh.nodes);
-        bvh.prims.resize(order_.size());
-        for (std::size_t i = 0; i < order_.size(); ++i) bvh.prims[i] = references_[order_[i]].prim;
+        bvh.prims.resize(references_.size());
+        for (std::size_t i = 0; i < references_.size(); ++i) bvh.prims[i] = references_[i].prim;
         return bvh;
     }
 
   private:
-    /// Node `slot` over order_[first, first + count), its descendants in slots [block, block +
+    /// Node `slot` over references_[first, first + count), its descendants in slots [block, block +
     /// 2 count - 2).
     void build(std::uint32_t slot, std::uint32_t block, std::uint32_t first, std::uint32_t count,
                const Aabb& box, int depth) {
@@ -89,16 +80,16 @@ class Builder {
 
     /// The least-cost binned split over all three axes, partitioned; left_count = 0 when a node
     /// of at most max_leaf references is cheaper as a leaf. False when no split has a finite
-    /// cost (all centroids in one point, or areas that overflow). Not inlined into build(): its
-    /// bins stay off the recursion's stack.
-    [[gnu::noinline]] bool sah_split(std::uint32_t first, std::uint32_t count, const Aabb& box,
-                                     Split& best) {
+    /// cost (all centroids in one point, or areas that overflow).
+    bool sah_split(std::uint32_t first, std::uint32_t count, const Aabb& box, Split& best) {
         Aabb centroid_box;
         for (std::uint32_t i = first; i < first + count; ++i)
-            centroid_box.extend(centroids_[order_[i]]);
-        std::array<Bin, kMaxBins> bins;
-        std::array<BinSplit, kMaxBins - 1> candidates;
-        const std::span<Bin> used(bins.data(), std::size_t(options_.bins));
+            centroid_box.extend(references_[i].box.center());
+        // Per thread, not per node: resetting bins of every node's frame dominated the build.
+        thread_local std::vector<Bin> bins;
+        thread_local std::vector<BinSplit> candidates;
+        bins.resize(std::size_t(options_.bins));
+        candidates.resize(std::size_t(options_.bins - 1));
         // Cost times the node's area: C_T A + C_I (A_L N_L + A_R N_R), no division by A = 0.
         const float area = box.surface_area();
         float best_cost = kInfinity;
@@ -107,10 +98,10 @@ class Builder {
             if (!BinAxis::make(a, centroid_box.lo[a], centroid_box.hi[a], options_.bins, axis))
                 continue;
             fill_bins(
-                used, first, first + count,
-                [&](std::size_t i) { return axis(centroids_[order_[i]]); },
-                [&](std::size_t i) -> const Aabb& { return references_[order_[i]].box; });
-            sweep_bins(used, candidates);
+                bins, first, first + count,
+                [&](std::size_t i) { return axis(references_[i].box.center()); },
+                [&](std::size_t i) -> const Aabb& { return references_[i].box; });
+            sweep_bins(bins, candidates);
             for (int j = 0; j < options_.bins - 1; ++j) {
                 const BinSplit& c = candidates[j];
                 if (c.left_count == 0 || c.right_count == 0) continue;
@@ -130,31 +121,31 @@ class Builder {
             best.left_count = 0;
             return true;
         }
-        std::uint32_t* begin = order_.data() + first;
-        [[maybe_unused]] const std::uint32_t* middle = std::partition(
+        BvhReference* begin = references_.data() + first;
+        [[maybe_unused]] const BvhReference* middle = std::partition(
             begin, begin + count,
-            [&](std::uint32_t r) { return best.axis(centroids_[r]) <= best.last_left; });
+            [&](const BvhReference& r) { return best.axis(r.box.center()) <= best.last_left; });
         assert(std::uint32_t(middle - begin) == best.left_count);
         return true;
     }
 
     /// Halves the references at the median centroid on the centroids' longest axis (ties by
-    /// reference number, so the order is deterministic).
+    /// triangle number).
     void median_split(std::uint32_t first, std::uint32_t count, Split& split) {
         Aabb centroid_box;
         for (std::uint32_t i = first; i < first + count; ++i)
-            centroid_box.extend(centroids_[order_[i]]);
+            centroid_box.extend(references_[i].box.center());
         const int axis = centroid_box.longest_axis();
-        std::uint32_t* begin = order_.data() + first;
+        BvhReference* begin = references_.data() + first;
         split.left_count = count / 2;
         std::nth_element(begin, begin + split.left_count, begin + count,
-                         [&](std::uint32_t a, std::uint32_t b) {
-                             const float ca = centroids_[a][axis], cb = centroids_[b][axis];
-                             return ca < cb || (!(cb < ca) && a < b);
+                         [axis](const BvhReference& a, const BvhReference& b) {
+                             const float ca = a.box.center()[axis], cb = b.box.center()[axis];
+                             return ca < cb || (!(cb < ca) && a.prim < b.prim);
                          });
         split.left = split.right = Aabb{};
         for (std::uint32_t i = 0; i < count; ++i)
-            (i < split.left_count ? split.left : split.right).extend(references_[begin[i]].box);
+            (i < split.left_count ? split.left : split.right).extend(begin[i].box);
     }
 
     /// Copies the subtree of slot `from`, already at nodes[to], depth first.
@@ -169,17 +160,15 @@ class Builder {
         compact(node.first + 1, children + 1, nodes);
     }
 
-    std::span<const BvhReference> references_;
     BvhBuildOptions options_;
-    std::vector<glm::vec3> centroids_;
-    std::vector<std::uint32_t> order_;  // reference numbers, grouped by node
+    std::vector<BvhReference> references_;  // partitioned in place: grouped by node
     std::vector<BvhNode> slots_;
 };
 
 }  // namespace
 
 Bvh build_bvh(std::span<const BvhReference> references, const BvhBuildOptions& options) {
-    assert(options.bins >= 2 && options.bins <= kMaxBins && options.max_leaf >= 1);
+    assert(options.bins >= 2 && options.max_leaf >= 1);
     if (references.empty()) return {};
     return Builder(references, options).build();
 }

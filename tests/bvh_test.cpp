@@ -1,6 +1,6 @@
-// The BVH's parts: the shared binning, the AVX2 box kernel against the scalar one, pre-split
-// references (conservative boxes, hits identical to naive on huge triangles and slivers), and
-// a build that is the same for any thread count and stays finite on flat and coincident input.
+// The BVH's parts: the shared binning, the AVX2 box kernel against the scalar one, hits
+// identical to naive on huge triangles and slivers, and a build that is the same for any thread
+// count and keeps leaves small (and NaN-free) on flat, coincident and big-triangle input.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -12,7 +12,6 @@
 #include "geometry/binning.h"
 #include "geometry/ray_box8.h"
 #include "trace/bvh_build.h"
-#include "trace/bvh_presplit.h"
 #include "trace/bvh_tracer.h"
 #include "trace/naive_tracer.h"
 
@@ -33,7 +32,7 @@ Scene triangle_scene(const std::vector<Triangle>& triangles) {
 }
 
 /// Huge triangles across the whole scene (a floor, walls, a tilted one), long slivers (aspect
-/// up to 1e5) and small triangles: the input pre-splitting is for.
+/// up to 1e5) and small triangles.
 std::vector<Triangle> huge_and_sliver_triangles(std::mt19937& rng) {
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     std::vector<Triangle> tris = {
@@ -155,59 +154,9 @@ TEST(BoxKernel, EightLanesMatchTheScalarTest) {
     EXPECT_GT(hits, 5000u);
 }
 
-/// Pieces of a split triangle cover it: any point of the triangle, and its neighbourhood the
-/// watertight test may accept, lies in some piece's box, and every piece lies in the whole
-/// triangle's conservative box.
-TEST(Presplit, PiecesCoverTheirTriangle) {
-    std::mt19937 rng(11);
-    const std::vector<Triangle> tris = huge_and_sliver_triangles(rng);
-    const std::vector<BvhReference> refs = presplit_references(tris, 1.0f);
-    EXPECT_GT(refs.size(), tris.size());
-    EXPECT_LE(refs.size(), 2 * tris.size());
-    std::vector<std::vector<Aabb>> pieces(tris.size());
-    for (const BvhReference& r : refs) {
-        ASSERT_LT(r.prim, tris.size());
-        const Aabb whole = conservative_bounds(tris[r.prim]);
-        EXPECT_TRUE(glm::all(glm::lessThanEqual(whole.lo, r.box.lo)));
-        EXPECT_TRUE(glm::all(glm::greaterThanEqual(whole.hi, r.box.hi)));
-        pieces[r.prim].push_back(r.box);
-    }
-    EXPECT_GT(pieces[0].size(), 8u);  // the floor is cut into many pieces
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-        ASSERT_FALSE(pieces[i].empty());
-        const float pad = conservative_padding(exact_bounds(tris[i]));
-        for (int sample = 0; sample < 200; ++sample) {
-            double a = unit(rng), b = unit(rng);
-            if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
-            const glm::dvec3 p = (1.0 - a - b) * glm::dvec3(tris[i].p0) +
-                                 a * glm::dvec3(tris[i].p1) + b * glm::dvec3(tris[i].p2);
-            // Pushed by just under the padding, towards a random corner of its neighbourhood.
-            const glm::dvec3 push = 0.99 * pad *
-                                    glm::dvec3(unit(rng) < 0.5 ? -1 : 1, unit(rng) < 0.5 ? -1 : 1,
-                                               unit(rng) < 0.5 ? -1 : 1);
-            const glm::dvec3 q = p + push;
-            bool covered = false;
-            for (const Aabb& box : pieces[i])
-                covered = covered || (glm::all(glm::lessThanEqual(glm::dvec3(box.lo), q)) &&
-                                      glm::all(glm::greaterThanEqual(glm::dvec3(box.hi), q)));
-            ASSERT_TRUE(covered) << "triangle " << i;
-        }
-    }
-}
-
-TEST(Presplit, ClippedBoundsOfARegionMissingTheTriangleIsEmpty) {
-    const Triangle tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    EXPECT_TRUE(clipped_bounds(tri, {{0.6f, 0.6f, -1}, {2, 2, 1}}).empty());
-    const Aabb half = clipped_bounds(tri, {{0.5f, -1, -1}, {2, 2, 1}});
-    EXPECT_LE(half.lo.x, 0.5f);
-    EXPECT_GE(half.hi.y, 0.5f);  // the corner (0.5, 0.5) of the clipped part
-    EXPECT_LT(half.hi.y, 0.51f);
-}
-
-/// Rays from everywhere against huge triangles and slivers, cut into pieces that land in many
-/// leaves: the same closest hits as naive, and the same occlusion answers.
-TEST(Presplit, HitsAreThoseOfNaive) {
+/// Rays from everywhere against huge triangles (whose boxes overlap every node) and slivers:
+/// the same closest hits as naive, and the same occlusion answers.
+TEST(Bvh, HugeTrianglesAndSliversGiveTheHitsOfNaive) {
     std::mt19937 rng(13);
     const Scene scene = triangle_scene(huge_and_sliver_triangles(rng));
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
@@ -249,7 +198,10 @@ std::vector<BvhReference> soup_references(std::size_t count, std::uint32_t seed)
         tris.push_back({c, c + size * glm::vec3(unit(rng), unit(rng), unit(rng)),
                         c + size * glm::vec3(unit(rng), unit(rng), unit(rng))});
     }
-    return presplit_references(tris, 0.3f);
+    std::vector<BvhReference> refs;
+    for (std::uint32_t i = 0; i < tris.size(); ++i)
+        refs.push_back({conservative_bounds(tris[i]), i});
+    return refs;
 }
 
 TEST(BvhBuild, SameTreeForAnyThreadCount) {
@@ -263,7 +215,7 @@ TEST(BvhBuild, SameTreeForAnyThreadCount) {
     EXPECT_EQ(std::memcmp(one.nodes.data(), four.nodes.data(), one.nodes.size() * sizeof(BvhNode)),
               0);
     EXPECT_EQ(one.prims, four.prims);
-    EXPECT_EQ(presplit_references(std::vector<Triangle>{}, 0.3f).size(), 0u);
+    EXPECT_TRUE(build_bvh({}).nodes.empty());
 }
 
 /// Leaves of at most max_leaf references, whatever the SAH says: a binary tree over n

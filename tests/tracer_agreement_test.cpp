@@ -416,8 +416,8 @@ TEST(Bvh, EveryTriangleIsInALeafAndChildrenNestInParents) {
             }
         }
     }
-    EXPECT_EQ(in_leaves, bvh.prims().size());  // pre-split triangles are in several leaves
-    EXPECT_GE(in_leaves, scene.triangle_count());
+    EXPECT_EQ(in_leaves, bvh.prims().size());
+    EXPECT_EQ(in_leaves, scene.triangle_count());
     EXPECT_EQ(std::count(seen.begin(), seen.end(), false), 0);
     EXPECT_EQ(inner + 1, nodes.size());             // every node but the root is one inner lane
     EXPECT_GT(leaves, scene.triangle_count() / 8);  // a real hierarchy, not one big leaf

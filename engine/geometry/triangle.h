@@ -211,29 +211,17 @@ inline bool hit_distance(const WatertightRay& r, const Triangle& tri, float tmin
     return decide_distance(r, tri, s, det, tmin, tmax, out);
 }
 
-/// The box of the three corners.
-inline Aabb exact_bounds(const Triangle& tri) {
-    Aabb box;
-    box.extend(tri.p0);
-    box.extend(tri.p1);
-    box.extend(tri.p2);
-    return box;
-}
-
-/// What conservative_bounds adds on every side: 2^-20 of the largest coordinate magnitude of
-/// the triangle's exact box (also for the boxes of pieces of it, bvh_presplit.h).
-inline float conservative_padding(const Aabb& exact) {
-    const glm::vec3 magnitude = glm::max(glm::abs(exact.lo), glm::abs(exact.hi));
-    return std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
-}
-
 /// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight
 /// test rounds at the scale of the coordinates, so it may accept a ray that passes a few ulps
 /// outside the exact triangle (or a hit at t = -0 from an origin on the surface); a divide-and-
 /// conquer filter or a BVH that culls with these boxes never rejects such a ray.
 inline Aabb conservative_bounds(const Triangle& tri) {
-    Aabb box = exact_bounds(tri);
-    const float pad = conservative_padding(box);
+    Aabb box;
+    box.extend(tri.p0);
+    box.extend(tri.p1);
+    box.extend(tri.p2);
+    const glm::vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+    const float pad = std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
     box.lo -= glm::vec3(pad);
     box.hi += glm::vec3(pad);
     return box;

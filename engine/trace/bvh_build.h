@@ -1,7 +1,6 @@
 #pragma once
 // Top-down binned-SAH BVH construction (Wald, "On fast Construction of SAH-based Bounding
-// Volume Hierarchies", 2007) over references: a reference is a box and the triangle it stands
-// for, so a triangle pre-split into pieces (bvh_presplit.h) appears in several leaves.
+// Volume Hierarchies", 2007) over references: a box and the triangle it stands for.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,7 +18,7 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
-/// A triangle's box, or the box of one of its pieces.
+/// A triangle's box (conservative_bounds) and number.
 struct BvhReference {
     Aabb box;
     std::uint32_t prim = 0;

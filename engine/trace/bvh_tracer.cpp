@@ -8,14 +8,9 @@
 #include <bit>
 
 #include "geometry/ray_box8.h"
-#include "trace/bvh_presplit.h"
 
 namespace edacrt {
 namespace {
-
-/// Pre-split references beyond one per triangle, relative to the triangle count: on Sponza
-/// camera rays from inside, 0.3 halves the triangle tests per ray against no pre-splitting.
-constexpr float kPresplitExtra = 0.3f;
 
 /// The children a node holds (its lanes with a box), for the box-test counters.
 int lane_count(const Bvh8Node& node) {
@@ -28,7 +23,9 @@ int lane_count(const Bvh8Node& node) {
 
 void BvhTracer::set_scene(const Scene& scene) {
     const std::vector<Triangle> triangles = gather_triangles(scene);
-    const std::vector<BvhReference> references = presplit_references(triangles, kPresplitExtra);
+    std::vector<BvhReference> references(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        references[i] = {conservative_bounds(triangles[i]), std::uint32_t(i)};
     Bvh bvh = build_bvh(references);
     wide_ = collapse_bvh8(bvh.nodes);
     bvh_prims_ = std::move(bvh.prims);

@@ -7,10 +7,9 @@
 
 namespace edacrt {
 
-/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) over pre-split
-/// triangles (bvh_presplit.h), built in set_scene() (per frame) and collapsed to 8 children per
-/// node (bvh_wide.h); traversed per ray with a stack, nearest child first, skipping children
-/// that start beyond the nearest hit so far.
+/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) built in
+/// set_scene() (per frame) and collapsed to 8 children per node (bvh_wide.h); traversed per ray
+/// with a stack, nearest child first, skipping children that start beyond the nearest hit so far.
 class BvhTracer final : public Tracer {
   public:
     Method method() const override { return Method::bvh; }

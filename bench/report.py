@@ -142,7 +142,8 @@ def seed_comparison(build, out, args):
 
 # Headings of the sections that other scripts append to bench/README.md, after this report's.
 OTHER_SECTIONS = ["## EDACRT against DACRT (the paper's experiment)",
-                  "## Deviations from the paper, measured"]
+                  "## Deviations from the paper, measured",
+                  "## BVH baseline"]
 
 
 def markdown_report(args, curves_by_scene, figures, accuracy_by_scene, seed_rows, started):

@@ -92,27 +92,21 @@ std::vector<Aabb> candidates() {
 
 void sampling8(benchmark::State& state) {
     const std::vector<Aabb> boxes = candidates();
-    Aabb8 blocks[2];
-    for (int side = 0; side < 2; ++side) {
-        alignas(32) float lanes[6][8];
+    Boxes8 blocks[2];
+    for (int side = 0; side < 2; ++side)
         for (int l = 0; l < 8; ++l) {
             const Aabb box = l < 7 ? boxes[std::size_t(7 * side + l)] : Aabb{};
             for (int k = 0; k < 3; ++k) {
-                lanes[k][l] = box.lo[k];
-                lanes[3 + k][l] = box.hi[k];
+                blocks[side].lo[k][l] = box.lo[k];
+                blocks[side].hi[k][l] = box.hi[k];
             }
         }
-        for (int k = 0; k < 3; ++k) {
-            blocks[side].lo[k] = _mm256_load_ps(lanes[k]);
-            blocks[side].hi[k] = _mm256_load_ps(lanes[3 + k]);
-        }
-    }
     std::size_t i = 0;
     for (auto _ : state) {
-        const SlabRay8 ray = broadcast(make_slab_ray(data().rays[i++ & 0xfffff]), kInfinity);
+        const SlabRay1x8 ray = make_slab_ray1x8(make_slab_ray(data().rays[i++ & 0xfffff]));
         __m256 entry[2];
-        const __m256 left = intersect_box8(ray, blocks[0], entry[0]);
-        const __m256 right = intersect_box8(ray, blocks[1], entry[1]);
+        const int left = intersect_boxes8(ray, blocks[0], kInfinity, entry[0]);
+        const int right = intersect_boxes8(ray, blocks[1], kInfinity, entry[1]);
         benchmark::DoNotOptimize(left);
         benchmark::DoNotOptimize(right);
         benchmark::DoNotOptimize(entry);

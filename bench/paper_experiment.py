@@ -24,6 +24,8 @@ import sys
 import time
 from pathlib import Path
 
+from readme_section import splice
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -447,21 +449,6 @@ def markdown(args, results, figure):
     return "\n".join(lines)
 
 
-def splice(readme, section):
-    """Puts `section` under HEADING in `readme`, replacing an older one up to the next '## '."""
-    text = readme.read_text() if readme.exists() else ""
-    lines = text.splitlines()
-    if HEADING in lines:
-        start = lines.index(HEADING)
-        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")),
-                   len(lines))
-        lines[start:end] = section.rstrip("\n").splitlines() + ([""] if end < len(lines) else [])
-        text = "\n".join(lines) + "\n"
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    readme.write_text(text)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -511,7 +498,7 @@ def main():
     section = markdown(args, results, figure)
     (args.out / "paper_experiment.md").write_text(section)
     if args.readme:
-        splice(ROOT / "bench" / "README.md", section)
+        splice(ROOT / "bench" / "README.md", HEADING, section)
     print(f"wrote {args.out / 'paper_experiment.md'}, {figure}"
           f"{' and bench/README.md' if args.readme else ''}")
 

@@ -143,6 +143,7 @@ def seed_comparison(build, out, args):
 # Headings of the sections that other scripts append to bench/README.md, after this report's.
 OTHER_SECTIONS = ["## EDACRT against DACRT (the paper's experiment)",
                   "## Deviations from the paper, measured",
+                  "## BVH baseline",
                   "## edacrt bench"]
 
 

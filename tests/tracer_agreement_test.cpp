@@ -2,6 +2,7 @@
 // identical hit/miss, t within 1e-6 relative, the same triangle unless two are hit at the same t.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <functional>
 #include <optional>
@@ -382,26 +383,43 @@ TEST(EdacrtStats, TestsFewerTrianglesThanNaive) {
     EXPECT_LT(stats.ray_triangle_tests, 160 * rays.size());
 }
 
-TEST(Bvh, EveryTriangleIsInOneLeafAndChildrenNestInParents) {
+TEST(Bvh, EveryTriangleIsInALeafAndChildrenNestInParents) {
     const Scene scene = make_builtin_scene("builtin:soup:count=3000,seed=3");
     BvhTracer bvh;
     bvh.set_scene(scene);
     const auto& nodes = bvh.nodes();
-    std::size_t in_leaves = 0, leaves = 0;
-    for (const BvhTracer::Node& node : nodes) {
-        if (node.count > 0) {
-            in_leaves += node.count;
-            ++leaves;
-            continue;
-        }
-        ASSERT_LT(node.first + 1, nodes.size());
-        for (const std::uint32_t child : {node.first, node.first + 1}) {
-            EXPECT_TRUE(glm::all(glm::lessThanEqual(node.box.lo, nodes[child].box.lo)));
-            EXPECT_TRUE(glm::all(glm::greaterThanEqual(node.box.hi, nodes[child].box.hi)));
+    std::size_t in_leaves = 0, leaves = 0, inner = 0;
+    std::vector<bool> seen(scene.triangle_count(), false);
+    for (const Bvh8Node& node : nodes) {
+        for (int lane = 0; lane < 8; ++lane) {
+            const Aabb box{
+                {node.boxes.lo[0][lane], node.boxes.lo[1][lane], node.boxes.lo[2][lane]},
+                {node.boxes.hi[0][lane], node.boxes.hi[1][lane], node.boxes.hi[2][lane]}};
+            if (box.empty()) continue;  // an unused lane
+            if (node.count[lane] > 0) {
+                in_leaves += node.count[lane];
+                ++leaves;
+                for (std::uint32_t k = node.child[lane]; k < node.child[lane] + node.count[lane];
+                     ++k)
+                    seen[bvh.prims()[k]] = true;
+                continue;
+            }
+            ++inner;
+            ASSERT_LT(node.child[lane], nodes.size());
+            const Boxes8& children = nodes[node.child[lane]].boxes;
+            for (int c = 0; c < 8; ++c) {
+                if (children.lo[0][c] > children.hi[0][c]) continue;
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_LE(box.lo[axis], children.lo[axis][c]);
+                    EXPECT_GE(box.hi[axis], children.hi[axis][c]);
+                }
+            }
         }
     }
+    EXPECT_EQ(in_leaves, bvh.prims().size());
     EXPECT_EQ(in_leaves, scene.triangle_count());
-    EXPECT_EQ(nodes.size(), 2 * leaves - 1);
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), false), 0);
+    EXPECT_EQ(inner + 1, nodes.size());             // every node but the root is one inner lane
     EXPECT_GT(leaves, scene.triangle_count() / 8);  // a real hierarchy, not one big leaf
 }
 

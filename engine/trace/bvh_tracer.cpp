@@ -5,123 +5,47 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 
-#include "geometry/binning.h"
-#include "geometry/ray_box.h"
+#include "geometry/ray_box8.h"
 
 namespace edacrt {
 namespace {
 
-constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 4;  // below this a node is always a leaf
-constexpr float kTraversalCost = 1.0f;     // relative to one ray-triangle test
-constexpr int kMaxDepth = 64;              // the traversal stack is sized for this
-
-/// Top-down binned-SAH build over index ranges, partitioning prims in place.
-class Builder {
-  public:
-    Builder(const std::vector<Aabb>& bounds, const std::vector<glm::vec3>& centroids,
-            std::vector<std::uint32_t>& prims, std::vector<BvhTracer::Node>& nodes)
-        : bounds_(bounds), centroids_(centroids), prims_(prims), nodes_(nodes) {}
-
-    void build(std::uint32_t node, std::uint32_t first, std::uint32_t count, int depth) {
-        Aabb box, centroid_box;
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            box.extend(bounds_[prims_[i]]);
-            centroid_box.extend(centroids_[prims_[i]]);
-        }
-        nodes_[node] = {box, first, count};
-        if (count <= kMaxLeafSize || depth >= kMaxDepth - 1) return;
-
-        const int axis = centroid_box.longest_axis();
-        const float lo = centroid_box.lo[axis];
-        const float width = centroid_box.hi[axis] - lo;
-        if (!(width > 0.0f)) return;  // all centroids in one point
-        const float scale = float(kBins) * (1.0f - 1e-6f) / width;
-        const auto bin_of = [&](std::uint32_t prim) {
-            return bin_index((centroids_[prim][axis] - lo) * scale, kBins);
-        };
-        std::array<Aabb, kBins> bin_box;
-        std::array<std::uint32_t, kBins> bin_count{};
-        for (std::uint32_t i = first; i < first + count; ++i) {
-            const int bin = bin_of(prims_[i]);
-            bin_box[bin].extend(bounds_[prims_[i]]);
-            ++bin_count[bin];
-        }
-        // SAH (the cost per ray that reaches the node): candidate j puts bins 0..j left.
-        std::array<float, kBins> right_cost{};
-        Aabb sweep;
-        std::uint32_t sweep_count = 0;
-        for (int j = kBins - 1; j > 0; --j) {
-            sweep.extend(bin_box[j]);
-            sweep_count += bin_count[j];
-            right_cost[j - 1] = sweep.surface_area() * float(sweep_count);
-        }
-        const float area = box.surface_area();
-        float best_cost = float(count);  // the leaf
-        int best = -1;
-        sweep = Aabb{};
-        sweep_count = 0;
-        for (int j = 0; j < kBins - 1; ++j) {
-            sweep.extend(bin_box[j]);
-            sweep_count += bin_count[j];
-            if (sweep_count == 0 || sweep_count == count) continue;
-            const float cost =
-                kTraversalCost + (sweep.surface_area() * float(sweep_count) + right_cost[j]) / area;
-            if (cost < best_cost) {
-                best_cost = cost;
-                best = j;
-            }
-        }
-        if (best < 0) return;
-        const std::uint32_t* middle =
-            std::partition(prims_.data() + first, prims_.data() + first + count,
-                           [&](std::uint32_t prim) { return bin_of(prim) <= best; });
-        const std::uint32_t left_count = std::uint32_t(middle - (prims_.data() + first));
-        const std::uint32_t children = std::uint32_t(nodes_.size());
-        nodes_.resize(nodes_.size() + 2);
-        nodes_[node].first = children;
-        nodes_[node].count = 0;
-        build(children, first, left_count, depth + 1);
-        build(children + 1, first + left_count, count - left_count, depth + 1);
-    }
-
-  private:
-    const std::vector<Aabb>& bounds_;
-    const std::vector<glm::vec3>& centroids_;
-    std::vector<std::uint32_t>& prims_;
-    std::vector<BvhTracer::Node>& nodes_;
-};
+/// The children a node holds (its lanes with a box), for the box-test counters.
+int lane_count(const Bvh8Node& node) {
+    const __m256 lo_x = _mm256_load_ps(node.boxes.lo[0]);
+    return std::popcount(
+        unsigned(_mm256_movemask_ps(_mm256_cmp_ps(lo_x, _mm256_set1_ps(kInfinity), _CMP_NEQ_OQ))));
+}
 
 }  // namespace
 
 void BvhTracer::set_scene(const Scene& scene) {
-    triangles_ = gather_triangles(scene);
-    std::vector<Aabb> bounds(triangles_.size());
-    std::vector<glm::vec3> centroids(triangles_.size());
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-        bounds[i] = conservative_bounds(triangles_[i]);
-        centroids[i] = centroid(triangles_[i]);
-    }
-    build_bytes_ = bounds.capacity() * sizeof(Aabb) + centroids.capacity() * sizeof(glm::vec3);
-    nodes_.clear();
-    prims_.clear();
-    if (triangles_.empty()) return;
-    prims_.resize(triangles_.size());
-    for (std::size_t i = 0; i < prims_.size(); ++i) prims_[i] = std::uint32_t(i);
-    nodes_.reserve(2 * triangles_.size());
-    nodes_.emplace_back();
-    Builder(bounds, centroids, prims_, nodes_).build(0, 0, std::uint32_t(prims_.size()), 0);
+    const std::vector<Triangle> triangles = gather_triangles(scene);
+    std::vector<BvhReference> references(triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        references[i] = {conservative_bounds(triangles[i]), std::uint32_t(i)};
+    Bvh bvh = build_bvh(references);
+    // The builder's temporaries, alive beside the members while the tree is collapsed.
+    build_bytes_ = triangles.capacity() * sizeof(Triangle) +
+                   references.capacity() * sizeof(BvhReference) +
+                   bvh.nodes.capacity() * sizeof(bvh.nodes[0]);
+    wide_ = collapse_bvh8(bvh.nodes);
+    bvh_prims_ = std::move(bvh.prims);
+    leaf_triangles_.resize(bvh_prims_.size());
+    for (std::size_t k = 0; k < bvh_prims_.size(); ++k)
+        leaf_triangles_[k] = triangles[bvh_prims_[k]];
 }
 
 std::size_t BvhTracer::working_bytes() const {
-    return triangles_.capacity() * sizeof(Triangle) + prims_.capacity() * sizeof(std::uint32_t) +
-           nodes_.capacity() * sizeof(Node) + build_bytes_;
+    return wide_.capacity() * sizeof(Bvh8Node) + bvh_prims_.capacity() * sizeof(std::uint32_t) +
+           leaf_triangles_.capacity() * sizeof(Triangle) + build_bytes_;
 }
 
 TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                   TraceDetail* detail) {
-    if (nodes_.empty()) {  // no triangles
+    if (wide_.empty()) {  // no triangles
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};
     }
@@ -134,55 +58,73 @@ template <Query Q>
 TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
                                 RayStats* ray_stats) const {
     const auto trace_range = [&](const tbb::blocked_range<std::size_t>& range, TraceStats stats) {
-        struct Entry {
-            std::uint32_t node;
+        struct Entry {  // a child lane: an inner node, or a leaf when count > 0
+            std::uint32_t child;
+            std::uint32_t count;
             float t_entry;
         };
-        std::array<Entry, kMaxDepth + 1> stack;
+        std::array<Entry, 7 * kBvhMaxDepth + 1> stack;  // a node pushes at most 7 siblings
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const Ray& ray = rays[i];
-            const SlabRay sray = make_slab_ray(ray);
+            const SlabRay1x8 sray = make_slab_ray1x8(make_slab_ray(ray));
             const WatertightRay wray = make_watertight_ray(ray);
             Hit& hit = hits[i] = Hit{};
             float t_far = ray.tmax;
+            std::uint32_t box_tests = 0, triangle_tests = 0;
+            Entry current{0, 0, ray.tmin};
             int top = 0;
-            std::uint32_t box_tests = 1, triangle_tests = 0;
-            if (float t_entry; intersect_box(sray, nodes_[0].box, t_far, t_entry))
-                stack[top++] = {0, t_entry};
-            while (top > 0) {
-                const auto [index, t_entry] = stack[--top];
-                if (t_entry > t_far) continue;  // behind a hit found since it was pushed
-                const Node& node = nodes_[index];
-                if (node.count == 0) {  // inner: the nearer child goes on top
-                    float t_left = 0.0f, t_right = 0.0f;
-                    box_tests += 2;
-                    const bool left = intersect_box(sray, nodes_[node.first].box, t_far, t_left);
-                    const bool right =
-                        intersect_box(sray, nodes_[node.first + 1].box, t_far, t_right);
-                    const Entry left_entry{node.first, t_left},
-                        right_entry{node.first + 1, t_right};
-                    if (left && right) {
-                        const bool right_nearer = t_right < t_left;
-                        stack[top++] = right_nearer ? left_entry : right_entry;
-                        stack[top++] = right_nearer ? right_entry : left_entry;
-                    } else if (left || right) {
-                        stack[top++] = left ? left_entry : right_entry;
-                    }
-                    continue;
-                }
-                TriangleHit candidate;
-                for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-                    ++triangle_tests;
-                    const std::uint32_t prim = prims_[k];
-                    if (!intersect_triangle(wray, triangles_[prim], ray.tmin, t_far, candidate))
+            for (;;) {
+                if (current.count == 0) {  // inner: the nearest child next, the others stacked
+                    const Bvh8Node& node = wide_[current.child];
+                    __m256 t_entry;
+                    int mask = intersect_boxes8(sray, node.boxes, t_far, t_entry);
+                    box_tests += lane_count(node);
+                    if (mask != 0) {
+                        alignas(32) float t[8];
+                        _mm256_store_ps(t, t_entry);
+                        const auto entry = [&](int lane) {
+                            return Entry{node.child[lane], node.count[lane], t[lane]};
+                        };
+                        const int first = std::countr_zero(unsigned(mask));
+                        mask &= mask - 1;
+                        if (mask == 0) {
+                            current = entry(first);
+                            continue;
+                        }
+                        // Insertion sort, farthest at the bottom: at most 8 entries.
+                        const int bottom = top;
+                        stack[top++] = entry(first);
+                        for (; mask != 0; mask &= mask - 1) {
+                            const Entry e = entry(std::countr_zero(unsigned(mask)));
+                            int k = top++;
+                            for (; k > bottom && stack[k - 1].t_entry < e.t_entry; --k)
+                                stack[k] = stack[k - 1];
+                            stack[k] = e;
+                        }
+                        current = stack[--top];
                         continue;
-                    hit = {candidate.t, std::int32_t(prim), candidate.u, candidate.v};
-                    t_far = candidate.t;
-                    if constexpr (Q == Query::any) {  // done: drop the rest of the stack
-                        top = 0;
-                        break;
                     }
+                } else {
+                    TriangleHit candidate;
+                    bool done = false;
+                    for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
+                        ++triangle_tests;
+                        if (!intersect_triangle(wray, leaf_triangles_[k], ray.tmin, t_far,
+                                                candidate))
+                            continue;
+                        hit = {candidate.t, std::int32_t(bvh_prims_[k]), candidate.u, candidate.v};
+                        t_far = candidate.t;
+                        if constexpr (Q == Query::any) {
+                            done = true;
+                            break;
+                        }
+                    }
+                    if (done) break;
                 }
+                // The next stacked child that starts before the nearest hit so far.
+                while (top > 0 && stack[top - 1].t_entry > t_far) --top;
+                if (top == 0) break;
+                current = stack[--top];
             }
             stats.ray_box_tests += box_tests;
             stats.ray_triangle_tests += triangle_tests;

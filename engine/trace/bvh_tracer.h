@@ -2,28 +2,23 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry/aabb.h"
+#include "trace/bvh_wide.h"
 #include "trace/tracer.h"
 
 namespace edacrt {
 
-/// Baseline with a stored structure: a binned-SAH BVH (Wald, "On fast Construction of
-/// SAH-based Bounding Volume Hierarchies", 2007), built in set_scene() (per frame), traversed
-/// per ray with a stack, nearer child first.
+/// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) built in
+/// set_scene() (per frame) and collapsed to 8 children per node (bvh_wide.h); traversed per ray
+/// with a stack, nearest child first, skipping children that start beyond the nearest hit so far.
 class BvhTracer final : public Tracer {
   public:
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
     std::size_t working_bytes() const override;
 
-    /// A node is a leaf when count > 0 (triangles prims[first, first + count)); otherwise its
-    /// children are nodes first and first + 1.
-    struct Node {
-        Aabb box;
-        std::uint32_t first = 0;
-        std::uint32_t count = 0;
-    };
-    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<Bvh8Node>& nodes() const { return wide_; }
+    /// The triangle of each reference, grouped by leaf.
+    const std::vector<std::uint32_t>& prims() const { return bvh_prims_; }
 
   protected:
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
@@ -33,10 +28,10 @@ class BvhTracer final : public Tracer {
     template <Query Q>
     TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
 
-    std::vector<Triangle> triangles_;
-    std::vector<std::uint32_t> prims_;  // triangle numbers, grouped by leaf
-    std::vector<Node> nodes_;
-    std::size_t build_bytes_ = 0;  // the builder's temporaries, alive beside the members
+    std::vector<Bvh8Node> wide_;
+    std::vector<std::uint32_t> bvh_prims_;
+    std::vector<Triangle> leaf_triangles_;  // the triangle of each reference, in prims order
+    std::size_t build_bytes_ = 0;           // the builder's temporaries, alive beside the members
 };
 
 }  // namespace edacrt

@@ -366,6 +366,7 @@ class Recursion {
             }
             left_boxes_[b] = gather(left);
             right_boxes_[b] = gather(right);
+
             std::fill_n(&counters_[4 * b], 4, Counters{_mm256_setzero_si256()});
         }
         const RayStream& stream = batch_.stream;
@@ -376,13 +377,21 @@ class Recursion {
                                     32)
                       : s);
             obs_.sampled_ray(stream.id[i], tests_per_sample);
-            const SlabRay8 ray = broadcast(stream.slab_ray(i), stream.t_far[i]);
+            const SlabRay1x8 ray = make_slab_ray1x8(stream.slab_ray(i));
+            const float t_far = stream.t_far[i];
             const __m256 left_on_tie =
                 _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
+            // Bit l of a mask to all-ones in lane l.
+            const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+            const auto lanes = [&](int mask) {
+                return _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                    _mm256_and_si256(_mm256_set1_epi32(mask), lane_bits), lane_bits));
+            };
             for (int b = 0; b < blocks; ++b) {
                 __m256 left_entry, right_entry;
-                const __m256 left = intersect_box8(ray, left_boxes_[b], left_entry);
-                const __m256 right = intersect_box8(ray, right_boxes_[b], right_entry);
+                const __m256 left = lanes(intersect_boxes8(ray, left_boxes_[b], t_far, left_entry));
+                const __m256 right =
+                    lanes(intersect_boxes8(ray, right_boxes_[b], t_far, right_entry));
                 const __m256 left_nearer = _mm256_or_ps(
                     _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
                     _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
@@ -412,17 +421,13 @@ class Recursion {
         return true;
     }
 
-    static Aabb8 gather(const Aabb (&boxes)[8]) {
-        Aabb8 b;
-        for (int k = 0; k < 3; ++k) {
-            alignas(32) float lo[8], hi[8];
+    static Boxes8 gather(const Aabb (&boxes)[8]) {
+        Boxes8 b;
+        for (int k = 0; k < 3; ++k)
             for (int l = 0; l < 8; ++l) {
-                lo[l] = boxes[l].lo[k];
-                hi[l] = boxes[l].hi[k];
+                b.lo[k][l] = boxes[l].lo[k];
+                b.hi[k][l] = boxes[l].hi[k];
             }
-            b.lo[k] = _mm256_load_ps(lo);
-            b.hi[k] = _mm256_load_ps(hi);
-        }
         return b;
     }
 
@@ -539,7 +544,7 @@ class Recursion {
     std::vector<std::size_t> bin_count_;
     std::vector<std::uint32_t> left_hits_, right_hits_, left_first_, right_first_;
     // The candidates' boxes eight at a time and, per block, the four sampling counters.
-    std::vector<Aabb8> left_boxes_, right_boxes_;
+    std::vector<Boxes8> left_boxes_, right_boxes_;
     struct Counters {
         __m256i lanes;
     };

@@ -128,7 +128,7 @@ void RecordingObserver::split(Visit& visit, const Node& node, const Split& split
     if (visit.node >= 0) {
         NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
         record.leaf = false;
-        record.axis = split.axis;
+        record.axis = split.bins.axis;
         record.chosen = split.last_left_bin;
         record.left_first = split.first == 0;
         record.alpha_true[0] = alpha_true[0];

@@ -58,10 +58,9 @@ struct Node {
 
 /// The split chosen for a node.
 struct Split {
-    int axis;
-    float bin_origin, bin_scale;  // the bin of centroid c: (c[axis] - origin) * scale
-    int last_left_bin;            // bins 0..last_left_bin go left
-    Aabb box[2];                  // left, right
+    BinAxis bins;       // the axis and the K bins of the centroids along it
+    int last_left_bin;  // bins 0..last_left_bin go left
+    Aabb box[2];        // left, right
     std::size_t count[2];
     float alpha[2];  // estimated hit ratios
     int first;       // the side visited first
@@ -100,10 +99,8 @@ class Recursion {
           batch_(batch),
           scratch_(scratch),
           obs_(observer),
-          bin_bounds_(params.bins),
-          left_bounds_(params.bins),
-          right_bounds_(params.bins),
-          bin_count_(params.bins),
+          bins_(params.bins),
+          splits_(params.bins - 1),
           left_hits_(params.bins),
           right_hits_(params.bins),
           left_first_(params.bins),
@@ -137,7 +134,7 @@ class Recursion {
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
             middle =
                 node.tris + partition(node.tris, node.tri_count, scratch_, [&](std::uint32_t t) {
-                    return bin_of(split, scene_.centroids[t]) <= split.last_left_bin;
+                    return split.bins(scene_.centroids[t]) <= split.last_left_bin;
                 });
         }
         assert(std::size_t(middle - node.tris) == split.count[0]);
@@ -180,10 +177,6 @@ class Recursion {
         return split.alpha[side] > 1.0f - p_.cost_filter / wasted;
     }
 
-    int bin_of(const Split& split, const glm::vec3& centroid) const {
-        return bin_index((centroid[split.axis] - split.bin_origin) * split.bin_scale, p_.bins);
-    }
-
     /// Binning (Section 3.1, after Wald 2007), the hit ratios (Section 3.2), the cost model and
     /// the traversal order (Section 3.3). False when no split separates the triangles or, in
     /// nodes of at most cost_leaf_max_tris triangles, none is cheaper than a leaf.
@@ -192,7 +185,7 @@ class Recursion {
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
             if (!bin(node, split)) return false;
         }
-        const bool sampled = estimate_hit_ratios(node, split.axis);
+        const bool sampled = estimate_hit_ratios(node, split.bins.axis);
         const bool sampled_alpha = sampled && p_.hit_ratio == HitRatio::sampled;
         const float box_area = node.box.surface_area();
         // C(V -> {V_L, V_R}) = C_T + C_I (alpha_L N_L + alpha_R N_R), per ray of the node;
@@ -201,11 +194,10 @@ class Recursion {
                               ? p_.cost_intersect * float(node.tri_count)
                               : kInfinity;
         int best = -1;
-        std::size_t left_count = 0;
         for (int j = 0; j < p_.bins - 1; ++j) {
-            left_count += bin_count_[j];
-            CandidateSplit c{left_bounds_[j], right_bounds_[j], std::uint32_t(left_count),
-                             std::uint32_t(node.tri_count - left_count)};
+            const BinSplit& s = splits_[j];
+            CandidateSplit c{s.left, s.right, std::uint32_t(s.left_count),
+                             std::uint32_t(s.right_count)};
             if (c.left_triangles == 0 || c.right_triangles == 0) {
                 c.cost = kInfinity;
                 obs_.candidate(visit, c);
@@ -232,42 +224,33 @@ class Recursion {
         }
         if (best < 0) return false;
         split.last_left_bin = best;
-        split.box[0] = left_bounds_[best];
-        split.box[1] = right_bounds_[best];
+        split.box[0] = splits_[best].left;
+        split.box[1] = splits_[best].right;
         if (sampled && p_.order == TraversalOrder::sampled)
             split.first = left_first_[best] >= right_first_[best] ? 0 : 1;
         else if (p_.order == TraversalOrder::left_first)
             split.first = 0;
         else  // the near child by the majority sign of the rays' direction on the axis
-            split.first = 2 * count_negative(node, split.axis) <= node.ray_count ? 0 : 1;
+            split.first = 2 * count_negative(node, split.bins.axis) <= node.ray_count ? 0 : 1;
         return true;
     }
 
     /// Chooses the bins' axis and range and bins the node's triangles; false when they cannot
     /// be separated (all centroids in one point).
     bool bin(const Node& node, Split& split) {
-        if (p_.binning == Binning::node_box) {
-            split.axis = node.box.longest_axis();
-            if (set_range(split, node.box.lo[split.axis], node.box.hi[split.axis]) &&
-                fill_bins(node, split) > 1)
-                return true;
-        }
+        const int axis = node.box.longest_axis();
+        if (p_.binning == Binning::node_box &&
+            BinAxis::make(axis, node.box.lo[axis], node.box.hi[axis], p_.bins, split.bins) &&
+            fill_bins(node, split.bins) > 1)
+            return true;
         // Across the centroids' range on V's longest axis or, if they all coincide there,
         // on the axis where they spread most.
         const Aabb centroids = centroid_bounds(node);
-        split.axis = node.box.longest_axis();
-        if (!(centroids.hi[split.axis] > centroids.lo[split.axis]))
-            split.axis = centroids.longest_axis();
-        if (!set_range(split, centroids.lo[split.axis], centroids.hi[split.axis])) return false;
-        fill_bins(node, split);
-        return true;
-    }
-
-    bool set_range(Split& split, float lo, float hi) const {
-        const float width = hi - lo;
-        if (!(width > 0.0f)) return false;
-        split.bin_origin = lo;
-        split.bin_scale = float(p_.bins) * (1.0f - 1e-6f) / width;
+        const int spread =
+            centroids.hi[axis] > centroids.lo[axis] ? axis : centroids.longest_axis();
+        if (!BinAxis::make(spread, centroids.lo[spread], centroids.hi[spread], p_.bins, split.bins))
+            return false;
+        fill_bins(node, split.bins);
         return true;
     }
 
@@ -286,51 +269,16 @@ class Recursion {
         });
     }
 
-    /// Bins the triangles, then sweeps the bins from both ends: candidate j puts bins 0..j
+    /// Bins the triangles and sweeps the bins (geometry/binning.h): candidate j puts bins 0..j
     /// left. Returns the number of non-empty bins.
-    int fill_bins(const Node& node, const Split& split) {
-        const int K = p_.bins;
-        struct Bins {
-            std::vector<Aabb> bounds;
-            std::vector<std::size_t> count;
-        };
-        const auto add = [&](const tbb::blocked_range<std::size_t>& range, Bins bins) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const std::uint32_t t = node.tris[i];
-                const int b = bin_of(split, scene_.centroids[t]);
-                bins.bounds[b].extend(scene_.bounds[t]);
-                ++bins.count[b];
-            }
-            return bins;
-        };
-        const Bins empty{std::vector<Aabb>(K), std::vector<std::size_t>(K, 0)};
-        const tbb::blocked_range<std::size_t> all(0, node.tri_count, kParallelItems);
-        const Bins bins = node.tri_count < kParallelItems
-                              ? add(all, empty)
-                              : tbb::parallel_reduce(all, empty, add, [K](Bins a, const Bins& b) {
-                                    for (int i = 0; i < K; ++i) {
-                                        a.bounds[i].extend(b.bounds[i]);
-                                        a.count[i] += b.count[i];
-                                    }
-                                    return a;
-                                });
-        int filled = 0;
-        for (int i = 0; i < K; ++i) {
-            bin_bounds_[i] = bins.bounds[i];
-            bin_count_[i] = bins.count[i];
-            filled += bins.count[i] > 0;
-        }
-        Aabb sweep;
-        for (int j = 0; j < K - 1; ++j) {
-            sweep.extend(bin_bounds_[j]);
-            left_bounds_[j] = sweep;
-        }
-        sweep = Aabb{};
-        for (int j = K - 2; j >= 0; --j) {
-            sweep.extend(bin_bounds_[j + 1]);
-            right_bounds_[j] = sweep;
-        }
-        return filled;
+    int fill_bins(const Node& node, const BinAxis& axis) {
+        edacrt::fill_bins(
+            bins_, 0, node.tri_count,
+            [&](std::size_t i) { return axis(scene_.centroids[node.tris[i]]); },
+            [&](std::size_t i) { return scene_.bounds[node.tris[i]]; }, kParallelItems);
+        sweep_bins(bins_, splits_);
+        return int(
+            std::count_if(bins_.begin(), bins_.end(), [](const Bin& b) { return b.count > 0; }));
     }
 
     /// Ray sampling (Section 3.2): for every candidate, how many sampled rays hit each child
@@ -361,8 +309,8 @@ class Recursion {
         for (int b = 0; b < blocks; ++b) {
             Aabb left[8], right[8];  // empty boxes pad the last block
             for (int l = 0; l < 8 && 8 * b + l < candidates; ++l) {
-                left[l] = left_bounds_[8 * b + l];
-                right[l] = right_bounds_[8 * b + l];
+                left[l] = splits_[std::size_t(8 * b + l)].left;
+                right[l] = splits_[std::size_t(8 * b + l)].right;
             }
             left_boxes_[b] = gather(left);
             right_boxes_[b] = gather(right);
@@ -540,8 +488,8 @@ class Recursion {
     Observer& obs_;
     TraceStats totals_;
     // Binning and sampling scratch, sized K once and reused by every node.
-    std::vector<Aabb> bin_bounds_, left_bounds_, right_bounds_;
-    std::vector<std::size_t> bin_count_;
+    std::vector<Bin> bins_;
+    std::vector<BinSplit> splits_;
     std::vector<std::uint32_t> left_hits_, right_hits_, left_first_, right_first_;
     // The candidates' boxes eight at a time and, per block, the four sampling counters.
     std::vector<Boxes8> left_boxes_, right_boxes_;

@@ -18,6 +18,7 @@ nlohmann::json to_json(const TraceDetail& detail) {
                           {"rays_passed", l.rays_passed},
                           {"filters_done", l.filters_done},
                           {"filters_skipped", l.filters_skipped},
+                          {"second_splits", l.second_splits},
                           {"triangles", l.triangles},
                           {"ray_box_tests", l.ray_box_tests},
                           {"sample_box_tests", l.sample_box_tests},

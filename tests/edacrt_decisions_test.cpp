@@ -345,7 +345,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
 
 TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
     EdacrtParams p;
-    EXPECT_EQ(edacrt_param_info().size(), 16u);
+    EXPECT_EQ(edacrt_param_info().size(), 17u);
     for (const ParamInfo& info : edacrt_param_info()) {
         SCOPED_TRACE(std::string(info.key));
         EXPECT_EQ(find_param(info.key), &info);

@@ -280,7 +280,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerAgreement, ::testing::ValuesIn(kSceneName
                          });
 
 /// Every combination of EDACRT's switches (hit ratio, order, filter skipping, small-node
-/// policy, binning): 108 recursions, each exact. Small leaves make the recursion deep.
+/// policy, binning): 108 recursions, each exact, half of them with the second child split and
+/// half after the first, alternating. Small leaves make the recursion deep.
 class AblationSwitches : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
@@ -298,6 +299,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         p.filter_skip = FilterSkip(skip);
                         p.small_nodes = SmallNodes(small);
                         p.binning = Binning(binning);
+                        p.second_child = SecondChild(combinations % 2);
                         p.leaf_rays = p.leaf_tris = 4;
                         p.sample_threshold = 200;
                         p.sample_count = 20;
@@ -306,7 +308,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         for (const ParamInfo* info :
                              {find_param("hit-ratio"), find_param("order"),
                               find_param("filter-skip"), find_param("small-nodes"),
-                              find_param("binning")})
+                              find_param("binning"), find_param("second-child")})
                             label += " " + param_text(p, *info);
                         expect_agreement(scene, reference, tracer, label, true);
                         if (HasFatalFailure()) return;

@@ -67,8 +67,12 @@ RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
         visit.node = std::int32_t(detail_.nodes.size());
         NodeRecord& record = detail_.nodes.emplace_back();
         record.parent = next_parent_;
-        if (next_parent_ >= 0)
-            detail_.nodes[std::size_t(next_parent_)].children[next_side_] = visit.node;
+        if (next_parent_ >= 0) {
+            NodeRecord& parent = detail_.nodes[std::size_t(next_parent_)];
+            std::int32_t& slot = parent.children[next_side_];
+            if (slot >= 0) parent.second_early = slot;  // the split second child's first part
+            slot = visit.node;
+        }
         record.depth = clamp_depth(node.depth);
         record.box = node.box;
         record.rays = std::uint32_t(node.ray_count);
@@ -142,6 +146,7 @@ void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int 
                               int visit_index, bool skipped, const Node& child) {
     LevelStats& stats = level(node.depth);
     stats.rays_passed += child.ray_count;
+    if (++visit.children == 3) ++stats.second_splits;
     if (skipped) {
         ++stats.filters_skipped;
     } else {
@@ -160,13 +165,14 @@ void RecordingObserver::child(Visit& visit, const Node& node, const Split&, int 
     if (visit.node >= 0) {
         NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
         record.filter_skipped[side] = skipped;
-        record.rays_passed[side] = std::uint32_t(child.ray_count);
+        record.rays_passed[side] += std::uint32_t(child.ray_count);  // a split second child
+                                                                     // gets two parts
     }
     // The recursion enters the child (if it has rays) right after this hook.
     next_parent_ = visit.node;
     next_side_ = side;
     if (visit.followed >= 0)
-        detail_.follow[std::size_t(visit.followed)].passed[side] =
+        detail_.follow[std::size_t(visit.followed)].passed[side] |=
             holds(batch_.stream, child, detail_.follow_ray);
 }
 

@@ -16,6 +16,9 @@ namespace edacrt {
 
 class RecordingObserver {
   public:
+    /// Its hooks keep a path and a parent between calls: subtrees must run in order.
+    static constexpr bool kConcurrent = false;
+
     /// `cost_intersect` (C_I) prices the recorded nodes' leaf cost.
     RecordingObserver(TraceDetail& detail, const RayBatch& batch, std::size_t ray_count,
                       float cost_intersect);
@@ -25,6 +28,7 @@ class RecordingObserver {
         std::int64_t followed = -1;  // index of the followed ray's visit
         Hit before;                  // the followed ray's hit when it entered a leaf
         int depth = 0;
+        int children = 0;  // child ray sets given so far: 3 when the second child was split
     };
 
     /// Adds the time until its end to a phase of a level.

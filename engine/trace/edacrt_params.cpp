@@ -36,6 +36,7 @@ constexpr std::array<std::string_view, 3> kOrders = {"sampled", "direction-sign"
 constexpr std::array<std::string_view, 3> kFilterSkips = {"off", "paper", "triangles"};
 constexpr std::array<std::string_view, 3> kSmallNodes = {"every-ray", "capped", "surface-area"};
 constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};  // enum order
+constexpr std::array<std::string_view, 2> kSecondChildren = {"after-first", "split"};
 constexpr std::array<std::string_view, 3> kPresets = {"default", "paper", "dacrt"};
 
 constexpr double kCount = 1e9;                               // upper bound of the count parameters
@@ -72,7 +73,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 16> kParams = {
+const std::array<ParamInfo, 17> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -121,6 +122,15 @@ const std::array<ParamInfo, 16> kParams = {
         "it, 2 C_bv (its two box tests) for an inner child, N C_I for a child that will be a "
         "leaf. triangles: N C_child at any depth. off: always filter (DACRT).",
         kFilterSkips),
+    choice<&EdacrtParams::second_child>(
+        "second-child", "second child",
+        "When the second child gets its rays. after-first: all of them once the first child is "
+        "done, so its hits cull them (the paper, Section 3.3); subtrees run one after the other. "
+        "split: the rays that missed the first child's box go to the second child at once, as a "
+        "task beside the first child (no hit there can cull them), the others once it is done; "
+        "the same culling and box tests, the second child recursing twice, and subtrees in "
+        "parallel.",
+        kSecondChildren),
     integer<&EdacrtParams::leaf_rays>(
         "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
     integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",
@@ -177,6 +187,7 @@ EdacrtParams paper_params() {
     p.cost_leaf_max_tris = 0;
     p.sample_threshold = 1000;
     p.sample_count = 100;
+    p.second_child = SecondChild::after_first;
     return p;
 }
 

@@ -44,6 +44,13 @@ enum class Binning : std::uint8_t {
     centroids,  // Wald 2007: K equal bins across the range the centroids span on that axis
 };
 
+/// When the second child gets its rays.
+enum class SecondChild : std::uint8_t {
+    after_first,  // the paper: all of them once the first child is done (its hits cull them)
+    split,        // at once, as a task beside the first child, the rays that missed the first
+                  // child's box (no hit there can cull them); the rest once it is done
+};
+
 /// Parameters of EDACRT (Nabata, Iwasaki, Dobashi, Nishita, HPG 2013). Section numbers refer to
 /// that paper. dacrt_params() turns the same recursion into object-partitioning DACRT (Afra
 /// 2012), paper_params() sets the paper's choices; README lists where the defaults differ.
@@ -63,12 +70,14 @@ struct EdacrtParams {
     TraversalOrder order = TraversalOrder::sampled;
     FilterSkip filter_skip = FilterSkip::paper;
     Binning binning = Binning::node_box;
+    SecondChild second_child = SecondChild::split;
     std::uint32_t seed = 1;  // of the per-node ray sampling
 
     bool operator==(const EdacrtParams&) const = default;
 };
 
-/// The paper's choices: the defaults, but every ray sampled in small nodes.
+/// The paper's choices: the defaults, but every ray sampled in small nodes and the second child
+/// after the first.
 EdacrtParams paper_params();
 
 /// DACRT (Afra 2012) on the same recursion: surface-area ratios, direction-sign order, always

@@ -1,13 +1,18 @@
 #pragma once
 // The EDACRT recursion (Nabata, Iwasaki, Dobashi, Nishita, "Efficient Divide-And-Conquer Ray
 // Tracing using Ray Sampling", HPG 2013, Algorithm 1); section numbers refer to that paper.
-// One recursion per batch. Large nodes run their partitions, binning and leaves in parallel;
-// every parallel step is deterministic, so the recursion is the same for any thread count.
+// One recursion per batch. Large nodes run their partitions, binning and leaves in parallel,
+// and with SecondChild::split a node's second child starts beside its first as a task; every
+// parallel step is deterministic, so the recursion is the same for any thread count.
 // Statistics are hooked in through the Observer (edacrt_observer.h); NullObserver compiles
 // them out.
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -70,7 +75,10 @@ struct Split {
 enum class Phase { sampling, binning, filtering, leaves };
 
 /// Observer with empty hooks: the fast path. See RecordingObserver for what each hook means.
+/// kConcurrent: the hooks may be called from concurrent subtrees (the recursion otherwise runs
+/// its subtrees one after the other, in the same order).
 struct NullObserver {
+    static constexpr bool kConcurrent = true;
     struct Visit {};
     struct Timer {};
     void root(std::uint32_t*, std::size_t, std::size_t, double) {}
@@ -89,33 +97,49 @@ struct NullObserver {
 /// Paths record the first 64 levels; order statistics cover those.
 inline constexpr int kPathLevels = 64;
 
+/// A thread's scratch for the nodes it works on, sized once and reused by every node. A node
+/// uses it only between its nested parallel calls, which run isolated, so no other node's work
+/// can interleave on the thread meanwhile.
+struct RecursionScratch {
+    struct Counters {  // a block of eight candidates' sampling counts
+        __m256i lanes;
+    };
+    PartitionScratch partition;  // of the triangles
+    std::vector<Bin> bins;
+    std::vector<BinSplit> splits;
+    std::vector<std::uint32_t> left_hits, right_hits, left_first, right_first;
+    std::vector<Boxes8> left_boxes, right_boxes;  // the candidates' boxes, eight at a time
+    std::vector<Counters> counters;               // four per block of candidates
+    std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles
+
+    void reserve(int k, std::size_t triangles) {
+        const auto K = std::size_t(k), blocks = (K + 6) / 8;
+        partition.reserve(triangles);
+        if (bins.size() == K) return;
+        bins.resize(K);
+        splits.resize(K - 1);
+        for (auto* v : {&left_hits, &right_hits, &left_first, &right_first}) v->resize(K);
+        left_boxes.resize(blocks);
+        right_boxes.resize(blocks);
+        counters.resize(4 * blocks);
+    }
+};
+using RecursionScratches = tbb::enumerable_thread_specific<RecursionScratch>;
+
 template <Query Q, class Observer>
 class Recursion {
   public:
     Recursion(const EdacrtParams& params, const EdacrtScene& scene, const RayBatch& batch,
-              PartitionScratch& scratch, Observer& observer)
-        : p_(params),
-          scene_(scene),
-          batch_(batch),
-          scratch_(scratch),
-          obs_(observer),
-          bins_(params.bins),
-          splits_(params.bins - 1),
-          left_hits_(params.bins),
-          right_hits_(params.bins),
-          left_first_(params.bins),
-          right_first_(params.bins),
-          left_boxes_((params.bins + 6) / 8),
-          right_boxes_((params.bins + 6) / 8),
-          counters_(4 * std::size_t((params.bins + 6) / 8)) {}
+              RecursionScratches& scratch, Observer& observer)
+        : p_(params), scene_(scene), batch_(batch), scratches_(scratch), obs_(observer) {}
 
     /// The ray-box and ray-triangle tests done so far.
-    const TraceStats& totals() const { return totals_; }
+    TraceStats totals() const { return {0, box_tests_, triangle_tests_}; }
 
     /// Moves the rays that reach `box` before their current hit to the front; returns how many.
     std::size_t filter(std::size_t begin, std::size_t count, const Aabb& box) {
-        totals_.ray_box_tests += count;
-        return filter_rays(batch_.stream, begin, count, box);
+        box_tests_ += count;
+        return isolated([&] { return filter_rays(batch_.stream, begin, count, box); });
     }
 
     /// Algorithm 1.
@@ -132,33 +156,88 @@ class Recursion {
         std::uint32_t* middle;
         {
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
-            middle =
-                node.tris + partition(node.tris, node.tri_count, scratch_, [&](std::uint32_t t) {
-                    return split.bins(scene_.centroids[t]) <= split.last_left_bin;
-                });
+            middle = node.tris + isolated([&] {
+                         return partition(
+                             node.tris, node.tri_count, scratch().partition, [&](std::uint32_t t) {
+                                 return split.bins(scene_.centroids[t]) <= split.last_left_bin;
+                             });
+                     });
         }
         assert(std::size_t(middle - node.tris) == split.count[0]);
         std::uint32_t* child_tris[2] = {node.tris, middle};
+        const auto child = [&](int side, int visit_index, std::size_t begin, std::size_t count) {
+            Node c{split.box[side],   begin,          count,    child_tris[side],
+                   split.count[side], node.depth + 1, node.path};
+            if (visit_index == 1 && node.depth < kPathLevels)
+                c.path |= std::uint64_t(1) << node.depth;
+            return c;
+        };
         // Near child first (Section 3.3): its hits shorten t_far, which culls rays from the
         // second child's filter. Filtering is skipped where it costs more than it saves
         // (Section 3.4).
-        for (const int visit_index : {0, 1}) {
-            const int side = visit_index == 0 ? split.first : 1 - split.first;
-            Node child{split.box[side],   node.ray_begin, node.ray_count, child_tris[side],
-                       split.count[side], node.depth + 1, node.path};
-            if (visit_index == 1 && node.depth < kPathLevels)
-                child.path |= std::uint64_t(1) << node.depth;
-            const bool skipped = skip_filter(split, side);
-            if (!skipped) {
-                [[maybe_unused]] auto timer = obs_.time(Phase::filtering, node.depth);
-                child.ray_count = filter(node.ray_begin, node.ray_count, child.box);
-            }
-            obs_.child(visit, node, split, side, visit_index, skipped, child);
-            run(child);
+        const int first_side = split.first, second_side = 1 - split.first;
+        const bool first_skipped = skip_filter(split, first_side);
+        const bool second_skipped = skip_filter(split, second_side);
+        Node first = child(first_side, 0, node.ray_begin, node.ray_count);
+        if (!first_skipped) first.ray_count = timed_filter(node, first.box, node.ray_count);
+        obs_.child(visit, node, split, first_side, 0, first_skipped, first);
+        // The second child's rays, from the node's rays in [begin, begin + count).
+        const auto second = [&](std::size_t begin, std::size_t count) {
+            const Node part{node.box,       begin,      count,    node.tris,
+                            node.tri_count, node.depth, node.path};
+            Node c = child(second_side, 1, begin, count);
+            if (!second_skipped) c.ray_count = timed_filter(part, c.box, count);
+            obs_.child(visit, part, split, second_side, 1, second_skipped, c);
+            return c;
+        };
+        const std::size_t missed = node.ray_count - first.ray_count;
+        if (p_.second_child == SecondChild::after_first || missed == 0) {
+            run(first);
+            run(second(node.ray_begin, node.ray_count));
+            return;
         }
+        // SecondChild::split: the rays that missed the first child's box (after its rays in
+        // the stream) cannot be culled by its hits, so they go to the second child at once,
+        // beside the first child (disjoint rays, triangles and stream ranges); those that
+        // reached it go once its hits have culled them.
+        const std::size_t missed_begin = node.ray_begin + first.ray_count;
+        if (!Observer::kConcurrent || missed < kTaskRays) {
+            run(first);
+            run(second(missed_begin, missed));
+        } else {
+            const Node early = second(missed_begin, missed);
+            tbb::task_group beside;
+            beside.run([&] { run(early); });
+            run(first);
+            beside.wait();
+        }
+        run(second(node.ray_begin, first.ray_count));
     }
 
+    /// Rays of a missed part below this go to the second child without a task of their own.
+    static constexpr std::size_t kTaskRays = 512;
+
   private:
+    /// The calling thread's scratch, sized for this recursion.
+    RecursionScratch& scratch() {
+        RecursionScratch& s = scratches_.local();
+        s.reserve(p_.bins, scene_.triangles.size());
+        return s;
+    }
+
+    /// Runs a nested parallel call so that the waiting thread takes no unrelated task (another
+    /// subtree, which would reuse its scratch).
+    template <class F>
+    static auto isolated(const F& f) {
+        return tbb::this_task_arena::isolate(f);
+    }
+
+    /// The node's rays [ray_begin, + count) filtered by `box`, timed.
+    std::size_t timed_filter(const Node& node, const Aabb& box, std::size_t count) {
+        [[maybe_unused]] auto timer = obs_.time(Phase::filtering, node.depth);
+        return filter(node.ray_begin, count, box);
+    }
+
     /// Section 3.4: filtering costs C_bv for every ray; passing a ray unfiltered costs, if it
     /// misses the child (1 - alpha of the rays), what the child then spends on it, n_child
     /// C_child. Skip when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv /
@@ -181,11 +260,13 @@ class Recursion {
     /// the traversal order (Section 3.3). False when no split separates the triangles or, in
     /// nodes of at most cost_leaf_max_tris triangles, none is cheaper than a leaf.
     bool choose_split(const Node& node, Split& split, typename Observer::Visit& visit) {
+        RecursionScratch& sc = scratch();
         {
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
-            if (!bin(node, split)) return false;
+            if (!bin(node, split, sc)) return false;
         }
-        const bool sampled = estimate_hit_ratios(node, split.bins.axis);
+        const std::uint32_t samples = estimate_hit_ratios(node, split.bins.axis, sc);
+        const bool sampled = samples > 0;
         const bool sampled_alpha = sampled && p_.hit_ratio == HitRatio::sampled;
         const float box_area = node.box.surface_area();
         // C(V -> {V_L, V_R}) = C_T + C_I (alpha_L N_L + alpha_R N_R), per ray of the node;
@@ -195,7 +276,7 @@ class Recursion {
                               : kInfinity;
         int best = -1;
         for (int j = 0; j < p_.bins - 1; ++j) {
-            const BinSplit& s = splits_[j];
+            const BinSplit& s = sc.splits[j];
             CandidateSplit c{s.left, s.right, std::uint32_t(s.left_count),
                              std::uint32_t(s.right_count)};
             if (c.left_triangles == 0 || c.right_triangles == 0) {
@@ -204,8 +285,8 @@ class Recursion {
                 continue;
             }
             if (sampled_alpha) {
-                c.alpha_left = float(left_hits_[j]) / float(samples_);
-                c.alpha_right = float(right_hits_[j]) / float(samples_);
+                c.alpha_left = float(sc.left_hits[j]) / float(samples);
+                c.alpha_right = float(sc.right_hits[j]) / float(samples);
             } else {  // the surface-area heuristic's conditional probabilities
                 c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
                 c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
@@ -224,10 +305,10 @@ class Recursion {
         }
         if (best < 0) return false;
         split.last_left_bin = best;
-        split.box[0] = splits_[best].left;
-        split.box[1] = splits_[best].right;
+        split.box[0] = sc.splits[best].left;
+        split.box[1] = sc.splits[best].right;
         if (sampled && p_.order == TraversalOrder::sampled)
-            split.first = left_first_[best] >= right_first_[best] ? 0 : 1;
+            split.first = sc.left_first[best] >= sc.right_first[best] ? 0 : 1;
         else if (p_.order == TraversalOrder::left_first)
             split.first = 0;
         else  // the near child by the majority sign of the rays' direction on the axis
@@ -237,11 +318,11 @@ class Recursion {
 
     /// Chooses the bins' axis and range and bins the node's triangles; false when they cannot
     /// be separated (all centroids in one point).
-    bool bin(const Node& node, Split& split) {
+    bool bin(const Node& node, Split& split, RecursionScratch& sc) {
         const int axis = node.box.longest_axis();
         if (p_.binning == Binning::node_box &&
             BinAxis::make(axis, node.box.lo[axis], node.box.hi[axis], p_.bins, split.bins) &&
-            fill_bins(node, split.bins) > 1)
+            fill_bins(node, split.bins, sc) > 1)
             return true;
         // Across the centroids' range on V's longest axis or, if they all coincide there,
         // on the axis where they spread most.
@@ -250,7 +331,7 @@ class Recursion {
             centroids.hi[axis] > centroids.lo[axis] ? axis : centroids.longest_axis();
         if (!BinAxis::make(spread, centroids.lo[spread], centroids.hi[spread], p_.bins, split.bins))
             return false;
-        fill_bins(node, split.bins);
+        fill_bins(node, split.bins, sc);
         return true;
     }
 
@@ -263,62 +344,66 @@ class Recursion {
         const tbb::blocked_range<std::size_t> all(0, node.tri_count, kParallelItems);
         if (node.tri_count < kParallelItems) return extend(all, Aabb{});
         // min and max are exact, so any grouping gives the same box
-        return tbb::parallel_reduce(all, Aabb{}, extend, [](Aabb a, const Aabb& b) {
-            a.extend(b);
-            return a;
+        return isolated([&] {
+            return tbb::parallel_reduce(all, Aabb{}, extend, [](Aabb a, const Aabb& b) {
+                a.extend(b);
+                return a;
+            });
         });
     }
 
     /// Bins the triangles and sweeps the bins (geometry/binning.h): candidate j puts bins 0..j
     /// left. Returns the number of non-empty bins.
-    int fill_bins(const Node& node, const BinAxis& axis) {
-        edacrt::fill_bins(
-            bins_, 0, node.tri_count,
-            [&](std::size_t i) { return axis(scene_.centroids[node.tris[i]]); },
-            [&](std::size_t i) { return scene_.bounds[node.tris[i]]; }, kParallelItems);
-        sweep_bins(bins_, splits_);
-        return int(
-            std::count_if(bins_.begin(), bins_.end(), [](const Bin& b) { return b.count > 0; }));
+    int fill_bins(const Node& node, const BinAxis& axis, RecursionScratch& sc) {
+        isolated([&] {
+            edacrt::fill_bins(
+                sc.bins, 0, node.tri_count,
+                [&](std::size_t i) { return axis(scene_.centroids[node.tris[i]]); },
+                [&](std::size_t i) { return scene_.bounds[node.tris[i]]; }, kParallelItems);
+        });
+        sweep_bins(sc.bins, sc.splits);
+        return int(std::count_if(sc.bins.begin(), sc.bins.end(),
+                                 [](const Bin& b) { return b.count > 0; }));
     }
 
     /// Ray sampling (Section 3.2): for every candidate, how many sampled rays hit each child
     /// box, and which child each enters first. A ray that starts inside both boxes enters them
     /// at the same distance; it counts for the child on the side it comes from along the split
-    /// axis. Returns false when this node takes surface-area ratios instead.
-    bool estimate_hit_ratios(const Node& node, int axis) {
+    /// axis. Returns the number of samples, 0 when this node takes surface-area ratios instead.
+    std::uint32_t estimate_hit_ratios(const Node& node, int axis, RecursionScratch& sc) {
         const bool wanted =
             p_.hit_ratio == HitRatio::sampled || p_.order == TraversalOrder::sampled;
         const bool small = node.ray_count <= p_.sample_threshold;
-        if (!wanted || (small && p_.small_nodes == SmallNodes::surface_area)) return false;
+        if (!wanted || (small && p_.small_nodes == SmallNodes::surface_area)) return 0;
         [[maybe_unused]] auto timer = obs_.time(Phase::sampling, node.depth);
         // Large nodes, and small ones under the `capped` policy, draw sample_count rays (with
         // replacement) from a generator seeded by the node, so a batch traces the same way
         // every time; otherwise every ray is a sample.
         const bool draw =
             !small || (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
-        samples_ = draw ? p_.sample_count : std::uint32_t(node.ray_count);
+        const std::uint32_t samples = draw ? p_.sample_count : std::uint32_t(node.ray_count);
         const int candidates = p_.bins - 1;
         const std::uint32_t node_seed = hash_combine(
             hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
         const auto tests_per_sample = std::uint32_t(2 * candidates);
-        totals_.ray_box_tests += std::uint64_t(samples_) * tests_per_sample;
-        obs_.sampled(node, samples_, std::uint64_t(samples_) * tests_per_sample);
+        box_tests_ += std::uint64_t(samples) * tests_per_sample;
+        obs_.sampled(node, samples, std::uint64_t(samples) * tests_per_sample);
         // Eight candidates at a time: each sampled ray against eight left and eight right
         // boxes, the per-candidate counts kept in vector lanes.
         const int blocks = (candidates + 7) / 8;
         for (int b = 0; b < blocks; ++b) {
             Aabb left[8], right[8];  // empty boxes pad the last block
             for (int l = 0; l < 8 && 8 * b + l < candidates; ++l) {
-                left[l] = splits_[std::size_t(8 * b + l)].left;
-                right[l] = splits_[std::size_t(8 * b + l)].right;
+                left[l] = sc.splits[std::size_t(8 * b + l)].left;
+                right[l] = sc.splits[std::size_t(8 * b + l)].right;
             }
-            left_boxes_[b] = gather(left);
-            right_boxes_[b] = gather(right);
+            sc.left_boxes[b] = gather(left);
+            sc.right_boxes[b] = gather(right);
 
-            std::fill_n(&counters_[4 * b], 4, Counters{_mm256_setzero_si256()});
+            std::fill_n(&sc.counters[4 * b], 4, RecursionScratch::Counters{_mm256_setzero_si256()});
         }
         const RayStream& stream = batch_.stream;
-        for (std::uint32_t s = 0; s < samples_; ++s) {
+        for (std::uint32_t s = 0; s < samples; ++s) {
             const std::size_t i =
                 node.ray_begin +
                 (draw ? std::size_t((std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >>
@@ -337,9 +422,10 @@ class Recursion {
             };
             for (int b = 0; b < blocks; ++b) {
                 __m256 left_entry, right_entry;
-                const __m256 left = lanes(intersect_boxes8(ray, left_boxes_[b], t_far, left_entry));
+                const __m256 left =
+                    lanes(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry));
                 const __m256 right =
-                    lanes(intersect_boxes8(ray, right_boxes_[b], t_far, right_entry));
+                    lanes(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry));
                 const __m256 left_nearer = _mm256_or_ps(
                     _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
                     _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
@@ -350,23 +436,23 @@ class Recursion {
                     _mm256_andnot_ps(_mm256_and_ps(left, left_nearer), right);
                 const __m256 masks[4] = {left, right, left_first, right_first};
                 for (int k = 0; k < 4; ++k)  // a true lane is -1: subtracting counts it
-                    counters_[4 * b + k].lanes =
-                        _mm256_sub_epi32(counters_[4 * b + k].lanes, _mm256_castps_si256(masks[k]));
+                    sc.counters[4 * b + k].lanes = _mm256_sub_epi32(sc.counters[4 * b + k].lanes,
+                                                                    _mm256_castps_si256(masks[k]));
             }
         }
         for (int j = 0; j < candidates; ++j) {
             const auto lane = [&](int k) {
                 alignas(32) std::uint32_t lanes[8];
                 _mm256_store_si256(reinterpret_cast<__m256i*>(lanes),
-                                   counters_[4 * (j / 8) + k].lanes);
+                                   sc.counters[4 * (j / 8) + k].lanes);
                 return lanes[j % 8];
             };
-            left_hits_[j] = lane(0);
-            right_hits_[j] = lane(1);
-            left_first_[j] = lane(2);
-            right_first_[j] = lane(3);
+            sc.left_hits[j] = lane(0);
+            sc.right_hits[j] = lane(1);
+            sc.left_first[j] = lane(2);
+            sc.right_first[j] = lane(3);
         }
-        return true;
+        return samples;
     }
 
     static Boxes8 gather(const Aabb (&boxes)[8]) {
@@ -387,7 +473,8 @@ class Recursion {
         };
         const tbb::blocked_range<std::size_t> all(0, node.ray_count, kParallelItems);
         if (node.ray_count < kParallelItems) return count(all, 0);
-        return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>());
+        return isolated(
+            [&] { return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>()); });
     }
 
     /// Brute force: every ray against every triangle of the node, one ray against eight
@@ -395,26 +482,27 @@ class Recursion {
     /// independent). An any-hit ray that is already done (passed down unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
-        gather_triangle_blocks(node);
+        RecursionScratch& sc = scratch();
+        gather_triangle_blocks(node, sc.tri_blocks);
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
-            return tests + trace_rays(node, range.begin(), range.end());
+            return tests + trace_rays(node, sc.tri_blocks, range.begin(), range.end());
         };
         const tbb::blocked_range<std::size_t> all(node.ray_begin, node.ray_begin + node.ray_count,
                                                   16);
         const std::uint64_t tests =
-            node.ray_count * node.tri_count < kParallelLeafTests
-                ? trace(all, 0)
-                : tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
-        totals_.ray_triangle_tests += tests;
+            node.ray_count * node.tri_count < kParallelLeafTests ? trace(all, 0) : isolated([&] {
+                return tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
+            });
+        triangle_tests_ += tests;
         obs_.leaf(visit, node, tests);
     }
 
     /// The leaf's triangles as blocks of eight for trace_rays.
-    void gather_triangle_blocks(const Node& node) {
+    void gather_triangle_blocks(const Node& node, std::vector<TriangleBlock8>& tri_blocks) {
         const std::size_t blocks = (node.tri_count + 7) / 8;
-        tri_blocks_.resize(std::max(tri_blocks_.size(), blocks));
+        tri_blocks.resize(std::max(tri_blocks.size(), blocks));
         for (std::size_t k = 0; k < blocks * 8; ++k) {
-            TriangleBlock8& block = tri_blocks_[k / 8];
+            TriangleBlock8& block = tri_blocks[k / 8];
             const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
             const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
             for (int c = 0; c < 3; ++c)
@@ -424,7 +512,8 @@ class Recursion {
 
     /// The rays at stream positions [begin, end), one at a time, against eight triangles at a
     /// time (the blocks of gather_triangle_blocks). Returns the triangle tests.
-    std::uint64_t trace_rays(const Node& node, std::size_t begin, std::size_t end) {
+    std::uint64_t trace_rays(const Node& node, const std::vector<TriangleBlock8>& tri_blocks,
+                             std::size_t begin, std::size_t end) {
         const RayStream& stream = batch_.stream;
         const std::size_t blocks = (node.tri_count + 7) / 8;
         const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
@@ -438,7 +527,7 @@ class Recursion {
             std::size_t tested = node.tri_count;
             for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
                 TriangleLanes8 lanes;
-                intersect_triangle8(wray, tri_blocks_[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
+                intersect_triangle8(wray, tri_blocks[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
                                     t_far, lanes);
                 // In triangle order, as the scalar loop: t_far shrinks with each hit.
                 for (unsigned todo = lanes.accepted | lanes.scalar; todo; todo &= todo - 1) {
@@ -484,21 +573,9 @@ class Recursion {
     const EdacrtParams& p_;
     const EdacrtScene& scene_;
     const RayBatch& batch_;
-    PartitionScratch& scratch_;
+    RecursionScratches& scratches_;
     Observer& obs_;
-    TraceStats totals_;
-    // Binning and sampling scratch, sized K once and reused by every node.
-    std::vector<Bin> bins_;
-    std::vector<BinSplit> splits_;
-    std::vector<std::uint32_t> left_hits_, right_hits_, left_first_, right_first_;
-    // The candidates' boxes eight at a time and, per block, the four sampling counters.
-    std::vector<Boxes8> left_boxes_, right_boxes_;
-    struct Counters {
-        __m256i lanes;
-    };
-    std::vector<Counters> counters_;
-    std::vector<TriangleBlock8> tri_blocks_;  // the leaf's triangles
-    std::uint32_t samples_ = 0;
+    std::atomic<std::uint64_t> box_tests_{0}, triangle_tests_{0};
 };
 
 }  // namespace edacrt

@@ -35,8 +35,18 @@ void EdacrtTracer::set_scene(const Scene& scene) {
 std::size_t EdacrtTracer::working_bytes() const {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     return bytes(scene_.triangles) + bytes(scene_.bounds) + bytes(scene_.centroids) +
-           batch_.rays.bytes() + bytes(batch_.tris) + bytes(batch_.scratch.items) +
-           bytes(batch_.scratch.keep) + bytes(batch_.scratch.block_kept);
+           batch_.rays.bytes() + bytes(batch_.tris) + scratch_bytes();
+}
+
+std::size_t EdacrtTracer::scratch_bytes() const {
+    const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    std::size_t total = 0;
+    for (const RecursionScratch& s : batch_.scratch)
+        total += bytes(s.partition.items) + bytes(s.partition.keep) +
+                 bytes(s.partition.block_kept) + bytes(s.tri_blocks) + bytes(s.bins) +
+                 bytes(s.splits) + 4 * bytes(s.left_hits) + 2 * bytes(s.left_boxes) +
+                 bytes(s.counters);
+    return total;
 }
 
 TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
@@ -50,7 +60,6 @@ TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hi
                                     TraceDetail* detail) {
     const std::size_t n = rays.size(), triangles = scene_.triangles.size();
     batch_.tris.resize(triangles);
-    batch_.scratch.reserve(triangles);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
         std::fill(hits.begin() + range.begin(), hits.begin() + range.end(), Hit{});
     });

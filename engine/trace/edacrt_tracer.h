@@ -30,7 +30,7 @@ class EdacrtTracer final : public Tracer {
     struct BatchBuffers {
         RayStreamStorage rays;
         std::vector<std::uint32_t> tris;
-        PartitionScratch scratch;  // for the triangle partitions
+        RecursionScratches scratch;  // per thread: partitions, binning, sampling, leaves
     };
 
   protected:
@@ -40,6 +40,9 @@ class EdacrtTracer final : public Tracer {
   private:
     template <Query Q>
     TraceStats trace_with(std::span<const Ray> rays, std::span<Hit> hits, TraceDetail* detail);
+
+    /// The threads' scratch (per thread: O(triangles) for the triangle partitions).
+    std::size_t scratch_bytes() const;
 
     EdacrtParams params_;
     Method method_;

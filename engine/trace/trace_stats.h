@@ -30,6 +30,8 @@ struct LevelStats {
     std::uint64_t rays_passed = 0;       // rays passed down to children (after filtering or not)
     std::uint64_t filters_done = 0;      // child ray sets filtered...
     std::uint64_t filters_skipped = 0;   // ...or passed down unfiltered (filter skipping)
+    std::uint64_t second_splits = 0;     // nodes whose second child got its rays in two parts
+                                         // (SecondChild::split): one more child ray set each
     std::uint64_t triangles = 0;         // summed over the level's nodes
     std::uint64_t ray_box_tests = 0;     // sample_box_tests + filter_box_tests
     std::uint64_t sample_box_tests = 0;  // sampled rays against the candidates' boxes
@@ -64,6 +66,7 @@ struct LevelStats {
         rays_in += o.rays_in;
         rays_passed += o.rays_passed;
         filters_done += o.filters_done;
+        second_splits += o.second_splits;
         filters_skipped += o.filters_skipped;
         triangles += o.triangles;
         ray_box_tests += o.ray_box_tests;
@@ -121,6 +124,9 @@ struct CandidateSplit {
 struct NodeRecord {
     std::int32_t parent = -1;
     std::int32_t children[2] = {-1, -1};  // left, right; -1 when not entered or not recorded
+    // With SecondChild::split, the second child's part that took the rays which missed the
+    // first child's box; children[] holds the part entered after the first child.
+    std::int32_t second_early = -1;
     std::uint16_t depth = 0;
     Aabb box;
     std::uint32_t rays = 0, triangles = 0;

@@ -6,6 +6,7 @@
 //              (intersect_box8) against 14 scalar tests;
 //   leaf       one ray against 16 triangles, 8 at a time (intersect_triangle8) against 16
 //              scalar watertight tests;
+//   binning    the triangles' centroids into K = 8 bins and the sweep (geometry/binning.h);
 //   partition  the triangles' stable partition by bin (the recursion's triangle split).
 //   build/edacrt_kernel_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -209,12 +210,35 @@ void partition_triangles(benchmark::State& state) {
     state.SetItemsProcessed(std::int64_t(n) * state.iterations());
 }
 
+void binning(benchmark::State& state) {
+    const std::vector<Triangle>& tris = data().triangles;
+    std::vector<glm::vec3> centroids;
+    std::vector<Aabb> bounds;
+    for (const Triangle& t : tris) {
+        centroids.push_back(centroid(t));
+        bounds.push_back(conservative_bounds(t));
+    }
+    BinAxis axis;
+    BinAxis::make(0, -1.0f, 1.0f, 8, axis);
+    std::vector<Bin> bins(8);
+    std::vector<BinSplit> splits(7);
+    for (auto _ : state) {
+        fill_bins(
+            bins, 0, tris.size(), [&](std::size_t i) { return axis(centroids[i]); },
+            [&](std::size_t i) { return bounds[i]; }, tris.size() + 1);  // one thread
+        sweep_bins(bins, splits);
+        benchmark::DoNotOptimize(splits.data());
+    }
+    state.SetItemsProcessed(std::int64_t(tris.size()) * state.iterations());
+}
+
 BENCHMARK(filter_stream)->Arg(4096)->Arg(1 << 20)->UseRealTime();
 BENCHMARK(filter_scalar)->Arg(4096)->Arg(1 << 20)->UseRealTime();
 BENCHMARK(sampling8);
 BENCHMARK(sampling_scalar);
 BENCHMARK(leaf8);
 BENCHMARK(leaf_scalar);
+BENCHMARK(binning);
 BENCHMARK(partition_triangles)->UseRealTime();
 
 }  // namespace

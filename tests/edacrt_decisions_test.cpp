@@ -72,6 +72,7 @@ std::vector<Ray> horizontal_rays(float x0, float dx, int count) {
 /// Parameters that make the root an inner node decided from every one of its rays.
 EdacrtParams exact_root() {
     EdacrtParams p;
+    p.presplit = 0.0f;  // the constructed triangles as they are
     p.leaf_rays = 1;
     p.leaf_tris = 16;
     p.cost_leaf_max_tris = 0;
@@ -261,6 +262,7 @@ TEST(EdacrtDecisions, SampledAlphaIsTheTrueAlphaWhenEveryRayIsSampled) {
     std::vector<Ray> rays(20'000);
     for (Ray& ray : rays) ray = {{coord(rng), coord(rng), coord(rng)}, {coord(rng), coord(rng), 1}};
     EdacrtParams p;
+    p.presplit = 0.0f;
     p.small_nodes = SmallNodes::every_ray;
     p.sample_threshold = 1'000'000;  // every node is small
     EdacrtTracer tracer(p);
@@ -326,6 +328,51 @@ TEST(EdacrtDecisions, BinsSpanTheNodeBoxOrTheCentroids) {
     EXPECT_FALSE(root(trace_root(wide, down, p)).leaf);
 }
 
+TEST(EdacrtPresplit, PiecesKeepTheHitsAndFollowTheParameter) {
+    // The Cornell box's walls and floor are a few large triangles: the ones pieces help.
+    const Scene scene = make_builtin_scene("builtin:cornell");
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
+    const Aabb box = scene.bounds();
+    std::vector<Ray> rays(20'000);
+    for (Ray& ray : rays) {
+        const glm::vec3 u(0.5f + 0.5f * coord(rng), 0.5f + 0.5f * coord(rng),
+                          0.5f + 0.5f * coord(rng));
+        ray = {box.lo + u * (box.hi - box.lo), {coord(rng), coord(rng), coord(rng)}};
+        if (ray.dir == glm::vec3(0.0f)) ray.dir = {0, 0, 1};
+    }
+    const auto naive = make_tracer(Method::naive);
+    naive->set_scene(scene);
+    std::vector<Hit> expected(rays.size()), hits(rays.size());
+    naive->trace(rays, expected, Query::closest);
+    EdacrtParams p;
+    p.presplit = 0.0f;
+    EdacrtTracer tracer(p);
+    tracer.set_scene(scene);
+    for (const float extra : {0.3f, 2.0f, 8.0f, 0.0f}) {
+        p.presplit = extra;
+        tracer.set_params(p);  // after set_scene: the pieces follow
+        TraceDetail detail;
+        tracer.trace(rays, hits, Query::closest, &detail);
+        // The root holds the pieces: at most `extra` per triangle more (32 triangles get none
+        // from 0.3, shared out by area, but many from 2).
+        const std::uint64_t pieces = detail.levels.at(0).triangles, n = scene.triangle_count();
+        if (extra == 0.0f) EXPECT_EQ(pieces, n);
+        if (extra >= 2.0f) EXPECT_GT(pieces, n + n / 2) << extra;
+        EXPECT_LE(double(pieces), double(n) * (1.0 + extra) + 1.0) << extra;
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            // The same distance; a tie at a shared edge may name the other triangle.
+            ASSERT_EQ(hits[i].t, expected[i].t) << "presplit " << extra << ", ray " << i;
+            ASSERT_EQ(hits[i].hit(), expected[i].hit());
+            ASSERT_LT(hits[i].prim, std::int32_t(scene.triangle_count()));
+        }
+    }
+    p.presplit = 8.5f;
+    EXPECT_THROW(tracer.set_params(p), InputError);
+    p.presplit = -0.1f;
+    EXPECT_THROW(tracer.set_params(p), InputError);
+}
+
 TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
     const EdacrtParams paper = preset_params("paper");
     EXPECT_EQ(paper, paper_params());
@@ -345,7 +392,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
 
 TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
     EdacrtParams p;
-    EXPECT_EQ(edacrt_param_info().size(), 17u);
+    EXPECT_EQ(edacrt_param_info().size(), 18u);
     for (const ParamInfo& info : edacrt_param_info()) {
         SCOPED_TRACE(std::string(info.key));
         EXPECT_EQ(find_param(info.key), &info);

@@ -281,7 +281,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerAgreement, ::testing::ValuesIn(kSceneName
 
 /// Every combination of EDACRT's switches (hit ratio, order, filter skipping, small-node
 /// policy, binning): 108 recursions, each exact, half of them with the second child split and
-/// half after the first, alternating. Small leaves make the recursion deep.
+/// half after the first, and a third each with 0, 0.5 and 1 extra triangle pieces per triangle,
+/// alternating. Small leaves make the recursion deep.
 class AblationSwitches : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
@@ -300,6 +301,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         p.small_nodes = SmallNodes(small);
                         p.binning = Binning(binning);
                         p.second_child = SecondChild(combinations % 2);
+                        p.presplit = 0.5f * float(combinations % 3);  // 0, 0.5, 1
                         p.leaf_rays = p.leaf_tris = 4;
                         p.sample_threshold = 200;
                         p.sample_count = 20;
@@ -308,7 +310,8 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         for (const ParamInfo* info :
                              {find_param("hit-ratio"), find_param("order"),
                               find_param("filter-skip"), find_param("small-nodes"),
-                              find_param("binning"), find_param("second-child")})
+                              find_param("binning"), find_param("second-child"),
+                              find_param("presplit")})
                             label += " " + param_text(p, *info);
                         expect_agreement(scene, reference, tracer, label, true);
                         if (HasFatalFailure()) return;

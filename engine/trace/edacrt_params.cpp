@@ -53,9 +53,9 @@ constexpr ParamInfo integer(std::string_view key, std::string_view label, std::s
 
 template <auto Member>
 constexpr ParamInfo real(std::string_view key, std::string_view label, std::string_view help,
-                         double ui_max) {
-    return {key,   label,  help, Kind::real,        0.0,
-            kCost, ui_max, {},   get_field<Member>, set_field<Member>};
+                         double ui_max, double max = kCost) {
+    return {key, label,  help, Kind::real,        0.0,
+            max, ui_max, {},   get_field<Member>, set_field<Member>};
 }
 
 template <auto Member>
@@ -73,7 +73,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 17> kParams = {
+const std::array<ParamInfo, 18> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -153,6 +153,14 @@ const std::array<ParamInfo, 17> kParams = {
         "C_child: per-triangle cost of an unfiltered ray, for filter-skip=triangles (Section "
         "3.4).",
         16.0),
+    real<&EdacrtParams::presplit>(
+        "presplit", "pre-split",
+        "Not in the paper: before the recursion, large triangles are cut into pieces (early split "
+        "clipping, Ernst & Greiner 2007, grid-aligned planes after Karras & Aila 2013), this many "
+        "extra pieces per triangle in all, shared by the triangles' box areas. A piece's box is "
+        "that of the clipped part, so a long wall or floor no longer widens every node it "
+        "crosses; a hit is still the whole triangle's. 0 turns it off.",
+        2.0, 8.0),
     integer<&EdacrtParams::seed>(
         "sampling-seed", "sampling seed",
         "Seed of the per-node ray sampling; a node's draws depend only on it, the node's depth "
@@ -188,6 +196,7 @@ EdacrtParams paper_params() {
     p.sample_threshold = 1000;
     p.sample_count = 100;
     p.second_child = SecondChild::after_first;
+    p.presplit = 0.0f;
     return p;
 }
 

@@ -71,13 +71,14 @@ struct EdacrtParams {
     FilterSkip filter_skip = FilterSkip::paper;
     Binning binning = Binning::node_box;
     SecondChild second_child = SecondChild::split;
+    float presplit = 0.3f;   // extra triangle pieces per triangle (not in the paper; 0: off)
     std::uint32_t seed = 1;  // of the per-node ray sampling
 
     bool operator==(const EdacrtParams&) const = default;
 };
 
-/// The paper's choices: the defaults, but every ray sampled in small nodes and the second child
-/// after the first.
+/// The paper's choices: the defaults, but every ray sampled in small nodes, the second child
+/// after the first and no pre-split triangles.
 EdacrtParams paper_params();
 
 /// DACRT (Afra 2012) on the same recursion: surface-area ratios, direction-sign order, always

@@ -40,6 +40,7 @@ struct EdacrtScene {
     std::vector<Triangle> triangles;
     std::vector<Aabb> bounds;
     std::vector<glm::vec3> centroids;
+    std::vector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
     Aabb box;
 };
 
@@ -563,7 +564,7 @@ class Recursion {
     }
 
     void record_hit(const Node& node, std::uint32_t r, std::uint32_t t, const TriangleHit& hit) {
-        batch_.hits[r] = {hit.t, std::int32_t(t), hit.u, hit.v};
+        batch_.hits[r] = {hit.t, std::int32_t(scene_.prims[t]), hit.u, hit.v};
         obs_.hit(r, node);
     }
 

@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "trace/edacrt_observer.h"
+#include "trace/presplit.h"
 
 namespace edacrt {
 
@@ -16,26 +17,54 @@ EdacrtTracer::EdacrtTracer(const EdacrtParams& params, Method method) : method_(
 
 void EdacrtTracer::set_params(const EdacrtParams& params) {
     validate(params);
+    const bool pieces_change = params.presplit != params_.presplit;
     params_ = params;
+    if (pieces_change) prepare_triangles();
 }
 
 void EdacrtTracer::set_scene(const Scene& scene) {
-    scene_.triangles = gather_triangles(scene);
-    scene_.bounds.resize(scene_.triangles.size());
-    scene_.centroids.resize(scene_.triangles.size());
+    triangles_ = gather_triangles(scene);
+    prepare_triangles();
+}
+
+void EdacrtTracer::prepare_triangles() {
     scene_.box = Aabb{};
-    for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
-        const Triangle& tri = scene_.triangles[i];
-        const Aabb& bounds = scene_.bounds[i] = conservative_bounds(tri);
-        scene_.centroids[i] = centroid(tri);
-        scene_.box.extend(bounds);
+    if (params_.presplit == 0.0f || triangles_.empty()) {
+        scene_.triangles = triangles_;
+        scene_.bounds.resize(scene_.triangles.size());
+        scene_.centroids.resize(scene_.triangles.size());
+        scene_.prims.resize(scene_.triangles.size());
+        for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
+            const Triangle& tri = scene_.triangles[i];
+            const Aabb& bounds = scene_.bounds[i] = conservative_bounds(tri);
+            scene_.centroids[i] = centroid(tri);
+            scene_.prims[i] = std::uint32_t(i);
+            scene_.box.extend(bounds);
+        }
+        return;
+    }
+    // Pieces of triangles (presplit.h): a piece keeps its whole triangle for the intersection
+    // and is binned by its clipped box's centre.
+    const std::vector<PrimReference> refs = presplit_references(triangles_, params_.presplit);
+    const std::size_t n = refs.size();
+    scene_.triangles.resize(n);
+    scene_.bounds.resize(n);
+    scene_.centroids.resize(n);
+    scene_.prims.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        scene_.triangles[i] = triangles_[refs[i].prim];
+        scene_.bounds[i] = refs[i].box;
+        scene_.centroids[i] = refs[i].box.center();
+        scene_.prims[i] = refs[i].prim;
+        scene_.box.extend(refs[i].box);
     }
 }
 
 std::size_t EdacrtTracer::working_bytes() const {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(scene_.triangles) + bytes(scene_.bounds) + bytes(scene_.centroids) +
-           batch_.rays.bytes() + bytes(batch_.tris) + scratch_bytes();
+    return bytes(triangles_) + bytes(scene_.triangles) + bytes(scene_.bounds) +
+           bytes(scene_.centroids) + bytes(scene_.prims) + batch_.rays.bytes() +
+           bytes(batch_.tris) + scratch_bytes();
 }
 
 std::size_t EdacrtTracer::scratch_bytes() const {

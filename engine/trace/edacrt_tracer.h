@@ -41,11 +41,14 @@ class EdacrtTracer final : public Tracer {
     template <Query Q>
     TraceStats trace_with(std::span<const Ray> rays, std::span<Hit> hits, TraceDetail* detail);
 
+    /// The recursion's triangles from triangles_: each one, or its pieces (params_.presplit).
+    void prepare_triangles();
     /// The threads' scratch (per thread: O(triangles) for the triangle partitions).
     std::size_t scratch_bytes() const;
 
     EdacrtParams params_;
     Method method_;
+    std::vector<Triangle> triangles_;  // the scene's, in scene order
     EdacrtScene scene_;
     BatchBuffers batch_;
 };

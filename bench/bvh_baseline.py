@@ -10,37 +10,21 @@ The two methods run interleaved (the order alternates run by run) and the ratio 
 pair, so that a machine whose speed drifts still gives a fair ratio; medians of --repeats runs.
 """
 import argparse
+import functools
 import json
 import os
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
 
+from bench_common import ROOT, SCENES, run as run_checked
 from readme_section import splice
 
-ROOT = Path(__file__).resolve().parent.parent
 HEADING = "## BVH baseline"
-# The buildings from inside (the views of bench/paper_experiment.py), the bunny framed.
-SCENES = [  # name, file under --scenes, edacrt_paper_rays camera flags
-    ("bunny", "bunny/stanford-bunny.obj", []),
-    ("sponza", "sponza/sponza.obj", ["--eye", "14,3,0", "--look-at", "0,5,0", "--fov", "60"]),
-    ("sibenik", "sibenik/sibenik.obj",
-     ["--eye", "-18,-10,0", "--look-at", "0,-8,0", "--fov", "60"]),
-    ("conference", "conference/conference.obj",
-     ["--eye", "1500,450,550", "--look-at", "300,100,-200", "--fov", "60"]),
-]
+run = functools.partial(run_checked, tool="bvh_baseline")
 RAY_SETS = ["camera_1spp", "diffuse"]
 METHODS = ["bvh", "embree"]
-
-
-def run(command):
-    result = subprocess.run([str(c) for c in command], cwd=ROOT, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"bvh_baseline: {' '.join(map(str, command))} failed:\n"
-                 f"{result.stdout}{result.stderr}")
-    return result.stdout
 
 
 def trace(args, scene, rays, method):

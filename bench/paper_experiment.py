@@ -13,17 +13,18 @@ Time is the trace_seconds `edacrt trace` prints (one batch; file I/O and scene s
 outside it); variants run interleaved, the median of --repeats runs is reported.
 """
 import argparse
+import functools
 import json
 import math
 import os
 import re
 import shlex
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
 
+from bench_common import ROOT, SCENES, run as run_checked
 from readme_section import splice
 
 import matplotlib
@@ -31,19 +32,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
 HEADING = "## EDACRT against DACRT (the paper's experiment)"
-# The OBJ files have no camera: the bunny is framed (frame_box); the buildings are seen from
-# inside, as in the paper (framing them from outside shows one flat wall, and Sponza's diffuse
-# rays from that wall all escape, leaving no path rays).
-SCENES = [  # name, file under --scenes, edacrt_paper_rays camera flags
-    ("bunny", "bunny/stanford-bunny.obj", []),
-    ("sponza", "sponza/sponza.obj", ["--eye", "14,3,0", "--look-at", "0,5,0", "--fov", "60"]),
-    ("sibenik", "sibenik/sibenik.obj",
-     ["--eye", "-18,-10,0", "--look-at", "0,-8,0", "--fov", "60"]),
-    ("conference", "conference/conference.obj",
-     ["--eye", "1500,450,550", "--look-at", "300,100,-200", "--fov", "60"]),
-]
+run = functools.partial(run_checked, tool="paper_experiment")
 RAY_SETS = ["camera_1spp", "camera_4spp", "camera_16spp", "diffuse", "reflection", "path"]
 SPP = {"camera_1spp": 1, "camera_4spp": 4, "camera_16spp": 16}
 EDACRT = ["--method", "edacrt"]
@@ -63,14 +53,6 @@ VARIANTS = [  # key, label, edacrt trace flags, ablation (else measured on every
      True),
 ]
 LABEL = {key: label for key, label, _, _ in VARIANTS}
-
-
-def run(command):
-    result = subprocess.run([str(c) for c in command], cwd=ROOT, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"paper_experiment: {' '.join(map(str, command))} failed:\n"
-                 f"{result.stdout}{result.stderr}")
-    return result.stdout
 
 
 def make_rays(args, name, scene, camera_flags):

@@ -531,8 +531,9 @@ class Recursion {
                 intersect_triangle8(wray, tri_blocks[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
                                     t_far, lanes);
                 // In triangle order, as the scalar loop: t_far shrinks with each hit.
-                for (unsigned todo = lanes.accepted | lanes.scalar; todo; todo &= todo - 1) {
-                    const int lane = std::countr_zero(todo);
+                for (unsigned pending = lanes.accepted | lanes.scalar; pending;
+                     pending &= pending - 1) {
+                    const int lane = std::countr_zero(pending);
                     const std::size_t k = 8 * b + std::size_t(lane);
                     TriangleHit hit;
                     if (!resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit)) continue;

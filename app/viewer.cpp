@@ -20,7 +20,9 @@
 #include "display.h"
 #include "render/film.h"
 #include "render/image.h"
+#include "render/image_format.h"
 #include "render/render_memory.h"
+#include "render/render_metadata.h"
 #include "script.h"
 #include "util/error.h"
 #include "viewer_state.h"
@@ -249,6 +251,18 @@ void save_window(const std::string& path, int width, int height) {
     const std::filesystem::path out(path);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     write_png_rgb8(out, pixels, width, height);
+}
+
+/// The shown frame's tone mapping, and what an EXR's header records about it.
+ImageOutput save_settings(const ViewerState& s) {
+    ImageOutput output;
+    output.exposure = s.exposure;
+    output.tone_map = ToneMap(s.tone_map);
+    output.metadata = render_metadata(
+        {"edacrt_viewer", s.scene ? s.scene->source : "", std::string(method_name(s.ui.method)),
+         std::string(integrator_name(s.ui.integrator)), s.frame->spp, std::uint32_t(s.ui.seed),
+         s.frame->seconds, s.camera.camera()});
+    return output;
 }
 
 /// Runs the script one step per frame; false when it has ended (or failed: `error` is set).
@@ -516,8 +530,7 @@ int run_viewer(const ViewerOptions& options) {
             if (s.save_requested && s.frame) {
                 s.save_requested = false;
                 try {
-                    const Image shown = tone_map(s.frame->image, s.exposure, ToneMap(s.tone_map));
-                    write_png(s.save_path, shown);
+                    save_image(s.save_path, s.frame->image, save_settings(s));
                     s.status = "saved " + s.save_path;
                 } catch (const std::exception& e) {
                     s.status = e.what();

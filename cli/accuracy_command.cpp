@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <random>
+#include <sstream>
 
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "progress.h"
 #include "render/bsdf.h"
 #include "render/shading_scene.h"
 #include "trace/reference_hits.h"
@@ -24,7 +27,12 @@ struct AccuracyOptions {
     int rays = 20000;
     std::uint32_t seed = 1;
     int repeats = 3;
+    bool skip_naive = false;
 };
+
+// The sample that times the brute-force passes up front, and the figure worth announcing.
+constexpr std::size_t kEstimateRays = 256;
+constexpr double kAnnounceSeconds = 10.0;
 
 using RaySet = std::pair<std::string, std::vector<Ray>>;
 
@@ -87,8 +95,10 @@ struct Accuracy {
     double max_relative_t_error = 0.0, sum_relative_t_error = 0.0;
 };
 
+/// Times `repeats` traces of the set (calling `traced` after each), then compares the hits.
 Accuracy measure(Tracer& tracer, const std::vector<Triangle>& triangles, const RaySet& set,
-                 const std::vector<ReferenceHit>& reference, int repeats) {
+                 const std::vector<ReferenceHit>& reference, int repeats,
+                 const std::function<void()>& traced) {
     const std::vector<Ray>& rays = set.second;
     std::vector<Hit> hits(rays.size());
     std::vector<double> times;
@@ -96,6 +106,7 @@ Accuracy measure(Tracer& tracer, const std::vector<Triangle>& triangles, const R
         const auto start = std::chrono::steady_clock::now();
         tracer.trace(rays, hits, Query::closest);
         times.push_back(seconds_since(start));
+        traced();
     }
     std::sort(times.begin(), times.end());
     Accuracy a;
@@ -123,37 +134,133 @@ Accuracy measure(Tracer& tracer, const std::vector<Triangle>& triangles, const R
     return a;
 }
 
+/// Seconds the brute-force passes will take: the reference's one pass and naive's `repeats`
+/// (0 when naive is not measured), extrapolated from timing both on a sample of the rays.
+struct BruteForceEstimate {
+    double reference = 0.0, naive = 0.0;
+};
+
+BruteForceEstimate estimate_brute_force(const Scene& scene, const std::vector<Triangle>& triangles,
+                                        const std::vector<RaySet>& sets, bool naive, int repeats) {
+    std::size_t total = 0;
+    for (const RaySet& set : sets) total += set.second.size();
+    const std::size_t stride = std::max<std::size_t>(1, total / kEstimateRays);
+    std::vector<Ray> sample;
+    for (const RaySet& set : sets)
+        for (std::size_t i = 0; i < set.second.size(); i += stride) sample.push_back(set.second[i]);
+    const double scale = double(total) / double(sample.size());
+    BruteForceEstimate estimate;
+    auto start = std::chrono::steady_clock::now();
+    reference_hits(triangles, sample);
+    estimate.reference = seconds_since(start) * scale;
+    if (naive) {
+        const auto tracer = make_tracer(Method::naive);
+        tracer->set_scene(scene);
+        std::vector<Hit> hits(sample.size());
+        start = std::chrono::steady_clock::now();
+        tracer->trace(sample, hits, Query::closest);
+        estimate.naive = seconds_since(start) * scale * repeats;
+    }
+    return estimate;
+}
+
+/// The reference hits of every set, a slice at a time so that progress can show.
+std::vector<std::vector<ReferenceHit>> compute_references(const std::vector<Triangle>& triangles,
+                                                          const std::vector<RaySet>& sets,
+                                                          Progress& progress) {
+    std::size_t total = 0, done = 0;
+    for (const RaySet& set : sets) total += set.second.size();
+    std::vector<std::vector<ReferenceHit>> references;
+    for (const RaySet& set : sets) {
+        const std::span<const Ray> rays = set.second;
+        std::vector<ReferenceHit>& hits = references.emplace_back();
+        const std::size_t slice = std::max<std::size_t>(1024, rays.size() / 16);
+        for (std::size_t begin = 0; begin < rays.size(); begin += slice) {
+            const auto part = reference_hits(
+                triangles, rays.subspan(begin, std::min(slice, rays.size() - begin)));
+            hits.insert(hits.end(), part.begin(), part.end());
+            done += part.size();
+            progress.update(double(done) / double(total), double(done), set.first);
+        }
+        progress.step(double(done) / double(total), double(done), set.first + " done");
+    }
+    return references;
+}
+
 void run(const AccuracyOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     if (o.rays < 1 || o.rays > 10'000'000) throw InputError("--rays must be 1..10000000");
+    std::vector<std::string> methods = o.methods;
+    if (o.skip_naive) std::erase(methods, std::string(method_name(Method::naive)));
+    if (methods.empty()) throw InputError("no method left to measure (--skip-naive removed naive)");
+    for (const std::string& name : methods) parse_method(name);  // before any work
     const Scene scene = load_scene_verbose(o.common.scene);
     if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
     const Camera camera = choose_camera(scene, CameraOptions{});
     const std::vector<Triangle> triangles = gather_triangles(scene);
     const std::vector<RaySet> sets = make_ray_sets(scene, camera, o.rays, o.seed);
+    const ProgressStyle style = progress_style(o.common.quiet);
+
+    const bool naive = std::find(methods.begin(), methods.end(), "naive") != methods.end();
+    const BruteForceEstimate estimate =
+        estimate_brute_force(scene, triangles, sets, naive, o.repeats);
+    if (style != ProgressStyle::quiet && estimate.reference + estimate.naive >= kAnnounceSeconds) {
+        const std::string reference = "the double-precision brute-force reference";
+        std::cerr << "accuracy: estimated from " << kEstimateRays
+                  << " rays: " << format_duration(estimate.reference) << " for " << reference;
+        if (naive)
+            std::cerr << ", " << format_duration(estimate.naive) << " for naive (" << o.repeats
+                      << " timed runs); --skip-naive leaves naive out, the hits are still "
+                         "compared with "
+                      << reference << "\n";
+        else
+            std::cerr << (o.skip_naive ? "; naive skipped (--skip-naive), every method is still "
+                                         "compared with it\n"
+                                       : "\n");
+    }
     std::vector<std::vector<ReferenceHit>> references;
-    for (const RaySet& set : sets) references.push_back(reference_hits(triangles, set.second));
+    {
+        Progress progress(style, "reference", Progress::Unit::rays);
+        progress.expect_seconds(estimate.reference);
+        progress.begin(sets.front().first);
+        references = compute_references(triangles, sets, progress);
+    }
 
     nlohmann::json results = nlohmann::json::array();
     std::cout << std::left << std::setw(8) << "method" << std::setw(24) << "ray set" << std::right
               << std::setw(10) << "Mrays/s" << std::setw(12) << "hit diff" << std::setw(12)
               << "tri diff" << std::setw(12) << "max rel t" << std::setw(12) << "mean rel t"
-              << "\n";
-    for (const std::string& name : o.methods) {
+              << std::endl;
+    std::size_t set_rays = 0;
+    for (const RaySet& set : sets) set_rays += set.second.size();
+    const double method_rays = double(set_rays) * o.repeats;
+    for (const std::string& name : methods) {
         CommonOptions common = o.common;
         common.method = name;
         const auto tracer = make_tracer(common);
+        Progress progress(style, name, Progress::Unit::rays);
+        if (name == "naive") progress.expect_seconds(estimate.naive);
+        progress.begin("set_scene");
         tracer->set_scene(scene);
+        double traced = 0.0;
         for (std::size_t s = 0; s < sets.size(); ++s) {
-            const Accuracy a = measure(*tracer, triangles, sets[s], references[s], o.repeats);
+            int run = 0;
+            progress.begin(sets[s].first + ", run 1/" + std::to_string(o.repeats));
+            const Accuracy a = measure(*tracer, triangles, sets[s], references[s], o.repeats, [&] {
+                traced += double(sets[s].second.size());
+                progress.step(traced / method_rays, traced,
+                              sets[s].first + ", run " + std::to_string(++run) + "/" +
+                                  std::to_string(o.repeats));
+            });
             const double n = double(sets[s].second.size());
             const double mrays = n / a.seconds * 1e-6;
             const double mean_error = a.both_hit ? a.sum_relative_t_error / double(a.both_hit) : 0;
-            std::cout << std::left << std::setw(8) << name << std::setw(24) << sets[s].first
-                      << std::right << std::setw(10) << std::setprecision(3) << mrays
-                      << std::setw(12) << double(a.hit_mismatch) / n << std::setw(12)
-                      << double(a.triangle_mismatch) / n << std::setw(12) << a.max_relative_t_error
-                      << std::setw(12) << mean_error << "\n";
+            std::ostringstream row;
+            row << std::left << std::setw(8) << name << std::setw(24) << sets[s].first << std::right
+                << std::setw(10) << std::setprecision(3) << mrays << std::setw(12)
+                << double(a.hit_mismatch) / n << std::setw(12) << double(a.triangle_mismatch) / n
+                << std::setw(12) << a.max_relative_t_error << std::setw(12) << mean_error;
+            progress.print(std::cout, row.str());
             results.push_back({{"method", name},
                                {"ray_set", sets[s].first},
                                {"rays", sets[s].second.size()},
@@ -169,6 +276,7 @@ void run(const AccuracyOptions& o) {
                            {"scene", scene.source},
                            {"triangles", scene.triangle_count()},
                            {"reference", "double-precision Moller-Trumbore, brute force"},
+                           {"skipped_naive", o.skip_naive},
                            {"results", results}});
 }
 
@@ -184,6 +292,10 @@ std::function<void()> add_accuracy_command(CLI::App& app) {
         "Example: edacrt accuracy --scene assets/spot/spot.obj --stats out/accuracy.json");
     add_common_options(*command, o.common);
     command->add_option("--methods", o.methods, "methods to measure")->delimiter(',');
+    command->add_flag("--skip-naive", o.skip_naive,
+                      "leave naive out: its brute force takes most of the time on large scenes "
+                      "(the estimate is printed up front); the hits are still compared with the "
+                      "double-precision brute-force reference");
     command->add_option("--rays", o.rays, "rays per set")->capture_default_str();
     command->add_option("--seed", o.seed, "seed of the ray sets")->capture_default_str();
     command->add_option("--repeats", o.repeats, "timed runs per set (median)")

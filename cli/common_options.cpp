@@ -3,6 +3,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "progress.h"
 #include "scene/builtin_scenes.h"
 #include "util/error.h"
 #include "util/output_file.h"
@@ -27,6 +28,7 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
         ->capture_default_str();
     command.add_option("--stats", options.stats_path,
                        "write timings and counters to this JSON file");
+    add_quiet_option(command, options.quiet);
 
     // EDACRT (and, where they apply, DACRT) parameters, generated from their descriptions
     // (engine/trace/edacrt_params.h): a preset first, then the flags given override it.

@@ -22,6 +22,7 @@ struct CommonOptions {
     std::string embree_mode{embree_mode_name(kDefaultEmbreeMode)};
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
+    bool quiet = false;  // no progress output
     std::string preset = "default";
     std::vector<std::string> param_values;  // as given, per edacrt_param_info(); empty: not given
     EdacrtParams edacrt;                    // the preset with the given values applied

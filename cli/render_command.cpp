@@ -1,16 +1,21 @@
-// edacrt render: the progressive wavefront renderer (primary, ao or path), to PNG or PFM.
+// edacrt render: the progressive wavefront renderer (primary, ao or path), to an image file
+// whose extension chooses the format.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "progress.h"
+#include "render/image_format.h"
 #include "render/render_memory.h"
+#include "render/render_metadata.h"
 #include "render/renderer.h"
 #include "stats_json.h"
 #include "util/error.h"
@@ -30,6 +35,8 @@ struct RenderOptions {
     std::string out = "out/render.png";
     float exposure = 0.0f;
     std::string tone_map = "clamp";
+    int jpeg_quality = 90;
+    std::string exr_pixel = "float";
     std::vector<float> sky;
     CameraOptions camera;
     RenderOptions() { settings.samples_per_pass = 4; }
@@ -37,11 +44,10 @@ struct RenderOptions {
 };
 
 /// Bytes per pixel the command holds besides the renderer's: the reference, and the larger of
-/// the output (the film's mean, tone-mapped in place for PNG, then the 8-bit pixels and stb's
-/// filtered rows, compressed stream and final copy) and the --stats trace of one ray per pixel.
+/// the output (the film's mean, tone-mapped in place for 8-bit formats, then the encoder's
+/// buffers) and the --stats trace of one ray per pixel.
 std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
-    const bool pfm = std::filesystem::path(o.out).extension() == ".pfm";
-    const std::uint64_t image = sizeof(glm::vec3) + (pfm ? 0 : 4 * 3);
+    const std::uint64_t image = sizeof(glm::vec3) + save_image_bytes_per_pixel(image_format(o.out));
     const std::uint64_t stats = o.common.stats_path.empty() ? 0 : trace_bytes_per_ray(true);
     const std::uint64_t reference = o.reference.empty() ? 0 : sizeof(glm::vec3);
     return reference + std::max(image, stats);
@@ -49,6 +55,7 @@ std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
 
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
+    image_format(o.out);  // an unknown extension is refused before any work
     RenderSettings settings = o.settings;
     settings.integrator = parse_integrator(o.integrator);
     settings.primary = parse_primary_shading(o.primary);
@@ -58,12 +65,13 @@ void run(const RenderOptions& o) {
     validate(settings);
     check_render_memory(settings, command_bytes_per_pixel(o));
     const ToneMap tone = parse_tone_map(o.tone_map);
+    parse_exr_pixel(o.exr_pixel);
     validate_exposure(o.exposure);
     if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
         throw InputError("--time-budget must be a finite number of seconds >= 0");
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     std::optional<Image> reference;
-    if (!o.reference.empty()) reference = read_image(o.reference);
+    if (!o.reference.empty()) reference = load_image(o.reference);
     if (reference && (reference->width != settings.width || reference->height != settings.height))
         throw InputError(o.reference + ": the reference is " + std::to_string(reference->width) +
                          "x" + std::to_string(reference->height) + ", the render " +
@@ -82,11 +90,22 @@ void run(const RenderOptions& o) {
     TraceDetail detail;
     nlohmann::json passes = nlohmann::json::array();
     double elapsed = 0.0;  // rendering only: comparing with the reference is not counted
+    Progress progress(progress_style(o.common.quiet), "render", Progress::Unit::samples);
+    const std::string of_spp = o.time_budget_only() ? "" : "/" + std::to_string(spp);
+    progress.begin("first pass");
     while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget)) {
         start = std::chrono::steady_clock::now();
         renderer.render_pass(nullptr, nullptr,
                              std::min(settings.samples_per_pass, spp - renderer.film().passes()));
         elapsed += seconds_since(start);
+        const int done = renderer.film().passes();
+        const double fraction =
+            std::max(double(done) / spp, o.time_budget > 0.0 ? elapsed / o.time_budget : 0.0);
+        const double mrays =
+            double(renderer.total().trace.rays) / renderer.total().trace_seconds * 1e-6;
+        char rays[32];
+        std::snprintf(rays, sizeof rays, "%.2f Mrays/s", mrays);
+        progress.step(fraction, done, std::to_string(done) + of_spp + " spp", rays);
         nlohmann::json pass = {{"spp", renderer.film().passes()},
                                {"seconds", elapsed},
                                {"trace_seconds", renderer.total().trace_seconds},
@@ -95,19 +114,22 @@ void run(const RenderOptions& o) {
             const ImageError error = compare_images(renderer.film().mean(), *reference);
             pass["rmse"] = error.rmse;
             pass["relative_mse"] = error.relative_mse;
-            std::cout << "spp " << renderer.film().passes() << "  " << elapsed << " s  rmse "
-                      << error.rmse << "  relMSE " << error.relative_mse << "\n";
+            std::ostringstream line;
+            line << "spp " << renderer.film().passes() << "  " << elapsed << " s  rmse "
+                 << error.rmse << "  relMSE " << error.relative_mse;
+            progress.print(std::cout, line.str());
         }
         passes.push_back(pass);
     }
+    progress.finish();
     const double render_seconds = elapsed;
 
-    const std::filesystem::path out(o.out);
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    // Temporaries only: the images are gone before the statistics trace below.
-    write_image(out, out.extension() == ".pfm"
-                         ? renderer.film().mean()
-                         : tone_map(renderer.film().mean(), o.exposure, tone));
+    // A temporary only: the image is gone before the statistics trace below.
+    save_image(
+        o.out, renderer.film().mean(),
+        {o.exposure, tone, o.jpeg_quality, parse_exr_pixel(o.exr_pixel),
+         render_metadata({"edacrt render", scene.source, o.common.method, o.integrator,
+                          renderer.film().passes(), settings.seed, render_seconds, camera})});
 
     const PassStats& total = renderer.total();
     const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;
@@ -159,9 +181,9 @@ std::function<void()> add_render_command(CLI::App& app) {
     RenderOptions& o = *options;
     CLI::App* command = app.add_subcommand(
         "render",
-        "Render progressively (one sample per pixel per pass) to a PNG, or a PFM for float "
-        "output.\nExample: edacrt render --scene assets/cornell-box/CornellBox-Original.obj "
-        "--spp 64 --out out/cornell.png");
+        "Render progressively (--samples-per-pass samples per pixel per pass) to an image: "
+        "PNG or JPEG (tone-mapped), HDR, PFM or OpenEXR (linear).\nExample: edacrt render "
+        "--scene assets/cornell-box/CornellBox-Original.obj --spp 64 --out out/cornell.exr");
     add_common_options(*command, o.common);
     RenderSettings& s = o.settings;
     command->add_option("--width", s.width, "image width in pixels")
@@ -185,7 +207,8 @@ std::function<void()> add_render_command(CLI::App& app) {
     command->add_option("--time-budget", o.time_budget,
                         "stop after this many seconds of rendering (0: no limit)");
     command->add_option("--reference", o.reference,
-                        "PFM or PNG of the same size: report the error after every pass");
+                        "an image of the same size (" + image_extensions() +
+                            "): report the error after every pass");
     command->add_option("--max-depth", s.max_depth, "path: bounces")->capture_default_str();
     command->add_option("--roulette-depth", s.roulette_depth, "path: Russian roulette from here")
         ->capture_default_str();
@@ -204,10 +227,22 @@ std::function<void()> add_render_command(CLI::App& app) {
                      "paths per wavefront (0: the whole pass, within 1 GiB of wavefront state)")
         ->capture_default_str();
     command->add_option("--seed", s.seed, "sample seed")->capture_default_str();
-    command->add_option("--exposure", o.exposure, "PNG: exposure in stops")->capture_default_str();
-    command->add_option("--tone-map", o.tone_map, "PNG: clamp|reinhard|aces")
+    command->add_option("--exposure", o.exposure, "PNG, JPEG: exposure in stops")
         ->capture_default_str();
-    command->add_option("--out", o.out, "output .png (tone-mapped sRGB) or .pfm (linear float)")
+    command->add_option("--tone-map", o.tone_map, "PNG, JPEG: clamp|reinhard|aces")
+        ->capture_default_str();
+    command->add_option("--jpeg-quality", o.jpeg_quality, "JPEG: quality")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    command
+        ->add_option("--exr-pixel", o.exr_pixel,
+                     "EXR: half (16-bit, as compositors default to) or float (32-bit, exact)")
+        ->capture_default_str();
+    command
+        ->add_option("--out", o.out,
+                     "output image; its extension chooses the format: .png, .jpg/.jpeg (8-bit "
+                     "sRGB, tone-mapped), .hdr (Radiance RGBE), .pfm (float), .exr (OpenEXR "
+                     "with the render's settings in its header)")
         ->capture_default_str();
     add_camera_options(*command, o.camera);
     return [options] { run(*options); };

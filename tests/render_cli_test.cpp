@@ -138,10 +138,11 @@ TEST_F(RenderCli, ARenderThatCannotFitIsRefusedUpFront) {
 TEST_F(RenderCli, WriteErrorsFailTheCommand) {
     // /dev/full takes the open and fails the writes; small outputs fail only at the close.
     std::filesystem::create_symlink("/dev/full", path("full.pfm"));
+    std::filesystem::create_symlink("/dev/full", path("full.png"));
     const struct {
         std::string args, message;
     } cases[] = {
-        {"--out /dev/full", "/dev/full: cannot write PNG (No space left on device)"},
+        {"--out " + path("full.png"), "full.png: cannot write PNG (No space left on device)"},
         {"--out " + path("full.pfm"), "full.pfm: cannot write PFM (No space left on device)"},
         {"--out " + path("x.png") + " --stats /dev/full",
          "/dev/full: cannot write statistics (No space left on device)"},

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 
+#include "render/image_format.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -76,7 +77,12 @@ void draw_render_panel(ViewerState& s) {
     ImGui::Combo("tone map", &s.tone_map, "clamp\0Reinhard\0ACES\0");
     ImGui::InputText("##save", &s.save_path);
     ImGui::SameLine();
-    if (ImGui::Button("save PNG")) s.save_requested = true;
+    if (ImGui::Button("save")) s.save_requested = true;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the extension chooses the format: %s (PNG and JPEG tone-mapped as "
+            "shown, the others linear radiance)",
+            image_extensions().c_str());
     if (!s.status.empty()) ImGui::TextUnformatted(s.status.c_str());
 
     ImGui::Separator();

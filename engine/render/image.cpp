@@ -28,15 +28,24 @@ float srgb_to_linear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-}  // namespace
-
-void write_png(const std::filesystem::path& path, const Image& image) {
+std::vector<std::uint8_t> to_srgb8(const Image& image) {
     std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c)
             bytes[3 * i + c] =
                 static_cast<std::uint8_t>(std::lround(255.0f * linear_to_srgb(image.pixels[i][c])));
-    write_png_rgb8(path, bytes, image.width, image.height);
+    return bytes;
+}
+
+/// stb's writers ignore write and close errors, so stb encodes and OutputFile writes.
+void append_to_file(void* context, void* data, int size) {
+    static_cast<OutputFile*>(context)->write(data, std::size_t(size));
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, const Image& image) {
+    write_png_rgb8(path, to_srgb8(image), image.width, image.height);
 }
 
 void write_png_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
@@ -45,12 +54,8 @@ void write_png_rgb8(const std::filesystem::path& path, std::span<const std::uint
         throw std::invalid_argument("write_png_rgb8: " + std::to_string(rgb.size()) +
                                     " bytes for " + std::to_string(width) + "x" +
                                     std::to_string(height) + " pixels");
-    // stbi_write_png ignores write and close errors, so stb encodes and OutputFile writes.
     OutputFile file(path, "PNG");
-    const auto append = [](void* context, void* data, int size) {
-        static_cast<OutputFile*>(context)->write(data, std::size_t(size));
-    };
-    if (!stbi_write_png_to_func(append, &file, width, height, 3, rgb.data(), width * 3))
+    if (!stbi_write_png_to_func(append_to_file, &file, width, height, 3, rgb.data(), width * 3))
         throw InputError(path.string() + ": cannot encode PNG");
     file.close();
 }
@@ -60,11 +65,50 @@ Image read_png(const std::filesystem::path& path) {
     std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
         stbi_load(path.c_str(), &width, &height, &channels, 3), &stbi_image_free);
     if (!data)
-        throw InputError(path.string() + ": cannot read PNG (" + stbi_failure_reason() + ")");
+        throw InputError(path.string() + ": cannot read image (" + stbi_failure_reason() + ")");
     Image image(width, height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c)
             image.pixels[i][c] = srgb_to_linear(float(data.get()[3 * i + c]) / 255.0f);
+    return image;
+}
+
+void write_jpg(const std::filesystem::path& path, const Image& image, int quality) {
+    if (quality < 1 || quality > 100)
+        throw InputError("JPEG quality must be 1..100, not " + std::to_string(quality));
+    const std::vector<std::uint8_t> bytes = to_srgb8(image);
+    OutputFile file(path, "JPEG");
+    if (!stbi_write_jpg_to_func(append_to_file, &file, image.width, image.height, 3, bytes.data(),
+                                quality))
+        throw InputError(path.string() + ": cannot encode JPEG");
+    file.close();
+}
+
+void write_hdr(const std::filesystem::path& path, const Image& image) {
+    // RGBE holds exponents up to 127: larger values, and inf, would wrap to black.
+    std::vector<float> values(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float v = image.pixels[i][c];
+            values[3 * i + c] = v > 0.0f ? std::min(v, 1e38f) : 0.0f;  // NaN too becomes 0
+        }
+    OutputFile file(path, "HDR");
+    if (!stbi_write_hdr_to_func(append_to_file, &file, image.width, image.height, 3, values.data()))
+        throw InputError(path.string() + ": cannot encode HDR");
+    file.close();
+}
+
+Image read_hdr(const std::filesystem::path& path) {
+    if (!stbi_is_hdr(path.c_str()))
+        throw InputError(path.string() + ": cannot read HDR (not a Radiance RGBE file)");
+    int width = 0, height = 0, channels = 0;
+    std::unique_ptr<float, decltype(&stbi_image_free)> data(
+        stbi_loadf(path.c_str(), &width, &height, &channels, 3), &stbi_image_free);
+    if (!data)
+        throw InputError(path.string() + ": cannot read HDR (" + stbi_failure_reason() + ")");
+    Image image(width, height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = {data.get()[3 * i], data.get()[3 * i + 1], data.get()[3 * i + 2]};
     return image;
 }
 
@@ -103,17 +147,6 @@ Image read_pfm(const std::filesystem::path& path) {
                 image.at(x, y)[c] = value;
             }
     return image;
-}
-
-void write_image(const std::filesystem::path& path, const Image& image) {
-    if (path.extension() == ".pfm")
-        write_pfm(path, image);
-    else
-        write_png(path, image);
-}
-
-Image read_image(const std::filesystem::path& path) {
-    return path.extension() == ".pfm" ? read_pfm(path) : read_png(path);
 }
 
 ImageError compare_images(const Image& image, const Image& reference) {

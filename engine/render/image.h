@@ -28,18 +28,25 @@ void write_png(const std::filesystem::path& path, const Image& image);
 void write_png_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
                     int height);
 
-/// Reads an 8-bit PNG back into linear RGB. Throws InputError.
+/// Reads an 8-bit PNG (or JPEG) back into linear RGB. Throws InputError.
 Image read_png(const std::filesystem::path& path);
+
+/// Writes 8-bit sRGB (values clamped to [0, 1]) as baseline JPEG of `quality` 1..100.
+/// Throws InputError when the file cannot be written.
+void write_jpg(const std::filesystem::path& path, const Image& image, int quality);
+
+/// Writes linear RGB as Radiance RGBE (.hdr); NaN and negative values become 0, values beyond
+/// its range (about 1.7e38, +inf included) its largest. Throws InputError.
+void write_hdr(const std::filesystem::path& path, const Image& image);
+
+/// Reads a Radiance .hdr into linear RGB. Throws InputError.
+Image read_hdr(const std::filesystem::path& path);
 
 /// Writes linear float RGB as a little-endian PFM ("PF", rows bottom to top). Throws InputError.
 void write_pfm(const std::filesystem::path& path, const Image& image);
 
 /// Reads a PFM (colour, either byte order). Throws InputError for malformed files.
 Image read_pfm(const std::filesystem::path& path);
-
-/// PFM for a .pfm path (linear float), PNG otherwise (sRGB); throws InputError.
-void write_image(const std::filesystem::path& path, const Image& image);
-Image read_image(const std::filesystem::path& path);
 
 /// Root mean square error over all channels, and the relative MSE (mean of
 /// (x - ref)^2 / (ref^2 + 0.01), channel by channel). Throws InputError for different sizes.

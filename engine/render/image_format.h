@@ -1,0 +1,47 @@
+#pragma once
+// Image files by extension: the one place that knows which formats exist, which are tone-mapped
+// 8-bit and which linear, for the CLI's --out and --reference and the viewer's save.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "render/exr_image.h"
+#include "render/film.h"
+#include "render/image.h"
+
+namespace edacrt {
+
+enum class ImageFormat { png, jpg, hdr, pfm, exr };
+
+/// The format of a path's extension (.png, .jpg or .jpeg, .hdr, .pfm, .exr, any letter case).
+/// Throws InputError naming the known extensions.
+ImageFormat image_format(const std::filesystem::path& path);
+
+/// ".png, .jpg, .jpeg, .hdr, .pfm, .exr", for help texts and messages.
+const std::string& image_extensions();
+
+/// PNG and JPEG hold tone-mapped 8-bit sRGB; HDR, PFM and EXR the linear radiance.
+bool is_linear(ImageFormat format);
+
+/// How save_image() encodes: exposure and tone map for 8-bit formats, JPEG quality, EXR pixel
+/// type, and metadata (written where the format has room for it: EXR).
+struct ImageOutput {
+    float exposure = 0.0f;  // stops
+    ToneMap tone_map = ToneMap::clamp;
+    int jpeg_quality = 90;  // 1..100
+    ExrPixel exr_pixel = ExrPixel::single;
+    ImageMetadata metadata;
+};
+
+/// Writes linear radiance in the format of the path's extension (tone-mapped for 8-bit
+/// formats), creating missing parent directories. Throws InputError.
+void save_image(const std::filesystem::path& path, Image linear, const ImageOutput& output);
+
+/// Reads any of the formats into linear RGB (8-bit ones decoded from sRGB). Throws InputError.
+Image load_image(const std::filesystem::path& path);
+
+/// Bytes per pixel save_image() holds besides its argument: encoder buffers (8-bit pixels and
+/// the compressed stream, RGBE floats, the in-memory EXR).
+std::uint64_t save_image_bytes_per_pixel(ImageFormat format);
+
+}  // namespace edacrt

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <stdexcept>
 
@@ -15,6 +16,7 @@
 #include "bench_scenes.h"
 #include "commands.h"
 #include "common_options.h"
+#include "progress.h"
 #include "render/render_memory.h"
 #include "scene/scene_paths.h"
 #include "util/error.h"
@@ -33,6 +35,7 @@ struct BenchOptions {
     int repeat = 5;
     int threads = 0;
     bool thread_sweep = false;
+    bool quiet = false;
     std::uint32_t seed = 1;
     std::string json_path, markdown_path;
 };
@@ -138,12 +141,13 @@ std::size_t reference_index(const std::vector<Variant>& variants) {
     return ours < variants.size() ? ours : 0;
 }
 
-/// Times every variant on `rays`, repetitions interleaved (A B C A B C ...), then compares
-/// the hits of the last repetition with the reference variant's.
+/// Times every variant on `rays`, repetitions interleaved (A B C A B C ...), calling
+/// `frame_done` after each frame, then compares the hits of the last repetition with the
+/// reference variant's.
 SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
                const std::vector<Variant>& variants, const std::string& scene_name,
                const std::string& set_name, Query query, const std::vector<Ray>& rays, int threads,
-               int repeat) {
+               int repeat, const std::function<void()>& frame_done) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     std::size_t(threads));
     SetRun run{scene_name, set_name, query, rays.size(), threads, {}};
@@ -164,6 +168,7 @@ SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
             m.stats = tracer->trace(rays, hits[i], query);
             m.trace_seconds.push_back(seconds_since(start));
             m.working_bytes = std::max(m.working_bytes, tracer->working_bytes());
+            frame_done();
         }
     const std::size_t ref = reference_index(variants);
     run.methods[ref].reference = true;
@@ -237,13 +242,21 @@ void run(const BenchOptions& o) {
     runs.reserve(scenes.size() * sets.size() * thread_counts.size());  // rows point into it
     std::vector<Row> rows;
     std::uint64_t disagreements = 0;
-    std::cout << table_header(sweep);
+    std::cout << table_header(sweep) << std::flush;
+    // Frames (set_scene + trace of one variant) are the unit of progress; a line per set.
+    Progress progress(progress_style(o.quiet), "bench", Progress::Unit::rays);
+    const double frames = double(scenes.size() * sets.size() * thread_counts.size() *
+                                 std::size_t(o.repeat) * variants.size());
+    double frames_done = 0.0, rays_done = 0.0;
     for (const BenchScene& bench_scene : scenes) {
+        progress.begin("loading " + bench_scene.name);
+        progress.clear();
         const Scene scene = load_scene_verbose(bench_scene.spec);
         if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
         const BenchView view = bench_view(scene, bench_scene.name);
-        std::cerr << "bench: " << bench_scene.name << ": " << (view.inside ? "inside" : "outside")
-                  << " view, " << view.reason << "\n";
+        progress.print(std::cerr, "bench: " + bench_scene.name + ": " +
+                                      (view.inside ? "inside" : "outside") + " view, " +
+                                      view.reason);
         const BenchRays bench_rays(scene, view.camera, o.width, o.height, o.seed);
         const auto vec = [](glm::vec3 v) { return nlohmann::json{v.x, v.y, v.z}; };
         scenes_json.push_back({{"name", bench_scene.name},
@@ -264,10 +277,17 @@ void run(const BenchOptions& o) {
                                     ? Query::any
                                     : Query::closest;
             for (int threads : thread_counts) {
-                std::cerr << "bench: " << bench_scene.name << " " << set.name << ", " << rays.size()
-                          << " rays, " << threads << " thread(s)\n";
+                const std::string what = bench_scene.name + " " + set.name + ", " +
+                                         std::to_string(rays.size()) + " rays, " +
+                                         std::to_string(threads) + " thread(s)";
+                progress.begin(what);
                 runs.push_back(run_set(scene, triangles, variants, bench_scene.name, set.name,
-                                       query, rays, threads, o.repeat));
+                                       query, rays, threads, o.repeat, [&] {
+                                           ++frames_done;
+                                           rays_done += double(rays.size());
+                                           progress.update(frames_done / frames, rays_done, what);
+                                       }));
+                progress.step(frames_done / frames, rays_done, what);
             }
             // Print once every thread count of the set is in (the scaling needs both).
             const SetRun* single = sweep ? &runs[runs.size() - thread_counts.size()] : nullptr;
@@ -275,19 +295,27 @@ void run(const BenchOptions& o) {
                 for (const Row& row : make_rows(runs[k], &runs[k] == single ? nullptr : single)) {
                     rows.push_back(row);
                     rows_json.push_back(row_json(row));
-                    if (row.shown) std::cout << table_row(row, sweep) << std::flush;
+                    if (row.shown) {
+                        std::string text = table_row(row, sweep);
+                        if (text.ends_with('\n')) text.pop_back();
+                        progress.print(std::cout, text);
+                    }
                     if (row.method->agreement.disagreements) {
                         disagreements += row.method->agreement.disagreements;
-                        std::cerr << "bench: DISAGREEMENT: " << row.method->label << " differs "
-                                  << "from the reference on " << row.method->agreement.disagreements
-                                  << " rays of " << row.run->scene << " " << row.run->set
-                                  << " (first: ray " << row.method->agreement.first_disagreement
-                                  << ")\n";
+                        progress.print(
+                            std::cerr,
+                            "bench: DISAGREEMENT: " + row.method->label +
+                                " differs from the "
+                                "reference on " +
+                                std::to_string(row.method->agreement.disagreements) + " rays of " +
+                                row.run->scene + " " + row.run->set + " (first: ray " +
+                                std::to_string(row.method->agreement.first_disagreement) + ")");
                     }
                 }
         }
     }
 
+    progress.finish();
     write_outputs(o, thread_counts, scenes_json, rows_json, rows, disagreements == 0);
     if (disagreements)
         throw std::runtime_error("the methods disagree on " + std::to_string(disagreements) +
@@ -338,6 +366,7 @@ std::function<void()> add_bench_command(CLI::App& app) {
     command->add_option("--threads", o.threads, "worker threads (0: all cores)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
+    add_quiet_option(*command, o.quiet);
     command->add_flag("--thread-sweep", o.thread_sweep,
                       "also run on 1 thread and report time(1 thread) / time(--threads)");
     command->add_option("--seed", o.seed, "seed of the jitter, bounces and light samples")

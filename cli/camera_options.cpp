@@ -17,6 +17,15 @@ void add_camera_options(CLI::App& command, CameraOptions& o) {
     command.add_option("--fov", o.fov, "vertical field of view in degrees");
 }
 
+void add_image_size_options(CLI::App& command, int& width, int& height) {
+    command.add_option("--width", width, "image width in pixels")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    command.add_option("--height", height, "image height in pixels")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+}
+
 Camera choose_camera(const Scene& scene, const CameraOptions& o) {
     Camera camera = scene.camera.value_or(frame_box(scene.bounds()));
     if (!o.eye.empty()) camera.eye = to_vec3(o.eye);

@@ -37,12 +37,7 @@ std::function<void()> add_camera_rays_command(CLI::App& app) {
         "Example: edacrt camera-rays --scene assets/spot/spot.obj --out out/spot_1m.rays");
     command->add_option("--scene", o.scene, "OBJ file or builtin:NAME (frames the camera)")
         ->required();
-    command->add_option("--width", o.width, "pixels per row")
-        ->check(CLI::Range(1, 16384))
-        ->capture_default_str();
-    command->add_option("--height", o.height, "rows")
-        ->check(CLI::Range(1, 16384))
-        ->capture_default_str();
+    add_image_size_options(*command, o.width, o.height);
     add_camera_options(*command, o.camera);
     command->add_option("--out", o.out, "output ray file")->required();
     return [options] { run(*options); };

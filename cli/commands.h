@@ -10,5 +10,6 @@ std::function<void()> add_trace_command(CLI::App& app);
 std::function<void()> add_camera_rays_command(CLI::App& app);
 std::function<void()> add_accuracy_command(CLI::App& app);
 std::function<void()> add_bench_command(CLI::App& app);
+std::function<void()> add_info_command(CLI::App& app);
 
 }  // namespace edacrt::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
     const auto run_camera_rays = edacrt::cli::add_camera_rays_command(app);
     const auto run_accuracy = edacrt::cli::add_accuracy_command(app);
     const auto run_bench = edacrt::cli::add_bench_command(app);
+    const auto run_info = edacrt::cli::add_info_command(app);
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("camera-rays")) run_camera_rays();
         if (app.got_subcommand("accuracy")) run_accuracy();
         if (app.got_subcommand("bench")) run_bench();
+        if (app.got_subcommand("info")) run_info();
     } catch (const edacrt::InputError& e) {
         std::cerr << "edacrt: error: " << e.what() << "\n";
         return 1;

@@ -112,6 +112,12 @@ void Progress::print(std::ostream& out, const std::string& text) {
     if (drawn_) draw();
 }
 
+void Progress::clear() {
+    const std::lock_guard lock(mutex_);
+    if (drawn_) std::cerr << "\r\033[K" << std::flush;
+    drawn_ = false;
+}
+
 void Progress::finish() {
     {
         const std::lock_guard lock(mutex_);

@@ -49,6 +49,10 @@ class Progress {
     /// Writes a line of results to `out` (flushed), with the terminal line cleared around it.
     void print(std::ostream& out, const std::string& line);
 
+    /// Clears the terminal line until the next update, for output that does not go through
+    /// print() (a loader's messages).
+    void clear();
+
     /// Clears the terminal line and stops redrawing; the destructor calls it.
     void finish();
 

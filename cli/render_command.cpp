@@ -186,12 +186,7 @@ std::function<void()> add_render_command(CLI::App& app) {
         "--scene assets/cornell-box/CornellBox-Original.obj --spp 64 --out out/cornell.exr");
     add_common_options(*command, o.common);
     RenderSettings& s = o.settings;
-    command->add_option("--width", s.width, "image width in pixels")
-        ->check(CLI::Range(1, 16384))
-        ->capture_default_str();
-    command->add_option("--height", s.height, "image height in pixels")
-        ->check(CLI::Range(1, 16384))
-        ->capture_default_str();
+    add_image_size_options(*command, s.width, s.height);
     command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
     command->add_option("--primary", o.primary, "primary shading: eye-light|normal|albedo|depth")
         ->capture_default_str();

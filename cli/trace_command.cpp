@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "common_options.h"
+#include "progress.h"
 #include "stats_json.h"
 #include "trace/ray_file.h"
 
@@ -25,15 +26,22 @@ void run(const TraceOptions& o) {
     const std::vector<Ray> rays = read_rays(o.rays_path);
     const Scene scene = load_scene_verbose(o.common.scene);
 
+    // One batch: its fraction is unknown until it ends, so a terminal shows time passing.
+    Progress progress(progress_style(o.common.quiet), "trace", Progress::Unit::rays);
+    progress.begin("set_scene (" + o.common.method + ")");
     auto start = std::chrono::steady_clock::now();
     tracer->set_scene(scene);
     const double prepare_seconds = seconds_since(start);
+    progress.step(-1.0, 0.0, "prepared " + o.common.method);
 
     std::vector<Hit> hits(rays.size());
+    progress.begin("tracing " + std::to_string(rays.size()) + " rays");
     start = std::chrono::steady_clock::now();
     const Query query = o.any_hit ? Query::any : Query::closest;
     const TraceStats stats = tracer->trace(rays, hits, query);
     const double trace_seconds = seconds_since(start);
+    progress.step(1.0, double(rays.size()), "traced " + std::to_string(rays.size()) + " rays");
+    progress.finish();
     write_hits(o.out_path, hits);
 
     const auto hit_count =

@@ -130,4 +130,10 @@ glm::vec3 unit_normal(const Triangle& tri) {
 
 double triangle_area(const Triangle& tri) { return 0.5 * glm::length(normal_in_double(tri)); }
 
+bool is_degenerate(const Triangle& tri) {
+    const glm::dvec3 ab = glm::dvec3(tri.p1) - glm::dvec3(tri.p0);
+    const glm::dvec3 ac = glm::dvec3(tri.p2) - glm::dvec3(tri.p0);
+    return glm::cross(ab, ac) == glm::dvec3(0.0);
+}
+
 }  // namespace edacrt

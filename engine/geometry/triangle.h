@@ -241,4 +241,8 @@ glm::vec3 unit_normal(const Triangle& tri);
 /// The triangle's area, in double for the same reason.
 double triangle_area(const Triangle& tri);
 
+/// Exactly zero area, computed in double; this also catches two coincident corners. Such
+/// triangles are kept (they keep their number) and never hit.
+bool is_degenerate(const Triangle& tri);
+
 }  // namespace edacrt

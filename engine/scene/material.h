@@ -1,8 +1,17 @@
 #pragma once
 #include <glm/vec3.hpp>
 #include <string>
+#include <vector>
 
 namespace edacrt {
+
+/// A texture an MTL statement names (map_Kd, bump, ...). Not rendered; `edacrt info` lists
+/// them and the files that are missing.
+struct TextureMap {
+    std::string keyword;  // as written
+    std::string file;     // as written
+    std::string path;     // resolved beside the MTL file by load_obj; empty from parse_obj
+};
 
 /// The subset of a Wavefront MTL material the renderer models.
 struct Material {
@@ -14,6 +23,7 @@ struct Material {
     float ns = 0.0f;     // specular exponent
     float ni = 1.0f;     // index of refraction
     int illum = 2;       // MTL illumination model
+    std::vector<TextureMap> textures;
 
     bool emissive() const { return ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f; }
 };

@@ -74,8 +74,23 @@ class MtlParser {
         } else if (is("illum")) {
             material.illum = integer(tokens, keyword);
         } else {
+            if (is_texture(keyword)) {
+                // The file is the last token: options such as "-bm 0.5" come before it.
+                std::string_view token, file;
+                while (tokens.next(token)) file = token;
+                if (!file.empty())
+                    material.textures.push_back({std::string(keyword), std::string(file), {}});
+            }
             ignore(keyword);
         }
+    }
+
+    /// Texture statements: map_Kd, map_Ks, map_bump, ..., and the bare bump, disp, decal, refl.
+    static bool is_texture(std::string_view keyword) {
+        if (keyword.size() > 4 && equals_ignoring_case(keyword.substr(0, 4), "map_")) return true;
+        for (std::string_view name : {"bump", "disp", "decal", "refl", "norm"})
+            if (equals_ignoring_case(keyword, name)) return true;
+        return false;
     }
 
     /// A whole token as a finite float; same rules as the OBJ parser.

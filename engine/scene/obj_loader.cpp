@@ -67,13 +67,6 @@ std::optional<std::string> read_file(const fs::path& path, std::string& why) {
     return text;
 }
 
-/// Exactly zero area, computed in double; this also catches two coincident corners.
-bool zero_area(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    const glm::dvec3 ab = glm::dvec3(b) - glm::dvec3(a);
-    const glm::dvec3 ac = glm::dvec3(c) - glm::dvec3(a);
-    return glm::cross(ab, ac) == glm::dvec3(0.0);
-}
-
 struct Corner {
     std::uint32_t position;
     std::int32_t normal;  // -1: none
@@ -299,7 +292,7 @@ class ObjParser {
     void add_triangle(const Corner& a, const Corner& b, const Corner& c) {
         const auto& p = scene_.positions;
         // Kept, so triangles are numbered in file order (the `prim` of hits); never hit.
-        degenerate_ += zero_area(p[a.position], p[b.position], p[c.position]);
+        degenerate_ += is_degenerate({p[a.position], p[b.position], p[c.position]});
         if (scene_.triangles.size() == kMaxElements) fail("too many triangles");
         scene_.triangles.push_back({a.position, b.position, c.position});
         scene_.triangle_materials.push_back(current_use_);
@@ -359,6 +352,9 @@ class ObjParser {
         const std::string mtl_source =
             mtl_dir_.empty() ? escape(name) : (fs::path(mtl_dir_) / escape(name)).string();
         for (Material& material : parse_mtl(*text, mtl_source, scene_.warnings)) {
+            if (!mtl_dir_.empty())  // texture names are relative to their MTL file
+                for (TextureMap& texture : material.textures)
+                    texture.path = (fs::path(mtl_dir_) / name).parent_path() / texture.file;
             // The first definition wins, as in tinyobjloader.
             const auto id = static_cast<std::uint32_t>(scene_.materials.size());
             if (material_ids_.emplace(material.name, id).second) {

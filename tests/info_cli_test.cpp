@@ -1,0 +1,175 @@
+// edacrt info against counts taken from the files themselves: triangles by fan triangulation of
+// the `f` lines, vertices from the `v` lines, materials from `newmtl`, emitters from `Ke`.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.h"
+#include "test_paths.h"
+
+namespace edacrt {
+namespace {
+
+/// What a plain reading of an OBJ (and its MTL) says.
+struct Counted {
+    std::size_t triangles = 0, vertices = 0, materials = 0, emissive_triangles = 0;
+    std::map<std::string, std::size_t> per_material;  // triangles after each usemtl
+    double lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30};
+};
+
+Counted count_obj(const std::filesystem::path& obj) {
+    Counted c;
+    std::map<std::string, bool> emissive;
+    std::ifstream in(obj);
+    std::string line, current = "default";
+    while (std::getline(in, line)) {
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "v") {
+            ++c.vertices;
+            for (int k = 0; k < 3; ++k) {
+                double x;
+                words >> x;
+                c.lo[k] = std::min(c.lo[k], x);
+                c.hi[k] = std::max(c.hi[k], x);
+            }
+        } else if (keyword == "f") {
+            std::size_t corners = 0;
+            for (std::string corner; words >> corner;) ++corners;
+            c.triangles += corners - 2;
+            c.per_material[current] += corners - 2;
+            if (emissive[current]) c.emissive_triangles += corners - 2;
+        } else if (keyword == "usemtl") {
+            words >> current;
+        } else if (keyword == "mtllib") {
+            std::string name;
+            words >> name;
+            std::ifstream mtl(obj.parent_path() / name);
+            std::string material;
+            for (std::string m; std::getline(mtl, m);) {
+                std::istringstream mw(m);
+                std::string key;
+                mw >> key;
+                if (key == "newmtl") {
+                    mw >> material;
+                    ++c.materials;
+                }
+                double r = 0, g = 0, b = 0;
+                if (key == "Ke" && (mw >> r >> g >> b) && r + g + b > 0) emissive[material] = true;
+            }
+        }
+    }
+    if (c.materials == 0) c.materials = 1;  // the default material
+    return c;
+}
+
+nlohmann::json info_json(const std::string& scene) {
+    // stdout alone: the JSON must parse with nothing else in it.
+    const auto result = test::run_command("('" + test::cli_path().string() + "' info '" + scene +
+                                          "' --json 2>/dev/null)");
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    return nlohmann::json::parse(result.output);
+}
+
+TEST(InfoCli, BundledScenesMatchTheirFiles) {
+    for (const char* relative : {"assets/cornell-box/CornellBox-Original.obj",
+                                 "assets/spot/spot.obj", "assets/teapot/teapot.obj"}) {
+        const std::filesystem::path obj = test::source_dir() / relative;
+        const Counted c = count_obj(obj);
+        const nlohmann::json info = info_json(obj.string());
+        EXPECT_EQ(info["triangles"].get<std::size_t>(), c.triangles) << relative;
+        EXPECT_EQ(info["degenerate_triangles"].get<std::size_t>(), 0u) << relative;
+        EXPECT_EQ(info["vertices"].get<std::size_t>(), c.vertices) << relative;
+        EXPECT_EQ(info["materials"].size(), c.materials) << relative;
+        EXPECT_EQ(info["emitters"]["triangles"].get<std::size_t>(), c.emissive_triangles)
+            << relative;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(info["bounds"]["min"][k].get<double>(), c.lo[k], 1e-6) << relative;
+            EXPECT_NEAR(info["bounds"]["max"][k].get<double>(), c.hi[k], 1e-6) << relative;
+        }
+        if (c.per_material.size() > 1) {
+            for (const auto& m : info["materials"]) {
+                EXPECT_EQ(m["triangles"].get<std::size_t>(),
+                          c.per_material.at(m["name"].get<std::string>()))
+                    << m["name"];
+            }
+        }
+        EXPECT_TRUE(info["warnings"].empty()) << info["warnings"];
+        for (const char* method : {"edacrt", "dacrt", "bvh", "naive"})
+            EXPECT_GT(info["memory"]["tracer_scene_bytes"][method].get<std::uint64_t>(), 0u);
+    }
+}
+
+TEST(InfoCli, CornellBoxFactsByHand) {
+    // Numbers from the file (36 triangles from 18 quads, 72 vertices, 8 materials, one
+    // quad light with Ke 17 12 4) and render's defaults (512x512).
+    const nlohmann::json info =
+        info_json((test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string());
+    EXPECT_EQ(info["triangles"], 36);
+    EXPECT_EQ(info["vertices"], 72);
+    EXPECT_EQ(info["materials"].size(), 8u);
+    EXPECT_EQ(info["emitters"]["triangles"], 2);
+    for (const auto& m : info["materials"]) {
+        if (m["name"] == "light") {
+            EXPECT_NE(m["model"].get<std::string>().find("emits Ke 17 12 4"), std::string::npos);
+        }
+    }
+    EXPECT_EQ(info["camera"]["from"], "framing the bounds from +z");
+    EXPECT_EQ(info["memory"]["width"], 512);
+    EXPECT_GT(info["memory"]["renderer_bytes"].get<std::uint64_t>(), 512u * 512u * 24u);
+}
+
+TEST(InfoCli, DegenerateFacesMissingTexturesAndUnmodelledStatementsAreReported) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("edacrt_info_cli_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "s.mtl") << "newmtl glass\nillum 7\nNi 1.33\nmap_Kd -bm 1 gone.png\n"
+                                    "d 0.5\n";
+    std::ofstream(dir / "s.obj") << "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n"
+                                    "usemtl glass\nf 1 2 3\nf 1 2 4\nf 1 1 3\nf 1 2 3 4\n";
+    const nlohmann::json info = info_json((dir / "s.obj").string());
+    std::filesystem::remove_all(dir);
+    EXPECT_EQ(info["triangles"], 5);             // 1 + 1 + 1 + 2 (the quad's fan)
+    EXPECT_EQ(info["degenerate_triangles"], 2);  // 1 2 4 collinear, 1 1 3 a repeated corner
+    ASSERT_EQ(info["materials"].size(), 1u);
+    EXPECT_EQ(info["materials"][0]["model"], "smooth dielectric Ni 1.33, Tf 1 1 1 (illum 7)");
+    EXPECT_EQ(info["materials"][0]["textures"][0]["file"], "gone.png");
+    std::string warnings;
+    for (const auto& w : info["warnings"]) warnings += w.get<std::string>() + "\n";
+    for (const char* expected : {"map_Kd gone.png is missing", "MTL feature 'd' is not modelled",
+                                 "2 degenerate triangles"})
+        EXPECT_NE(warnings.find(expected), std::string::npos) << expected << "\n" << warnings;
+
+    const auto text = test::run_cli("info builtin:cornell --width 64 --height 32");
+    EXPECT_EQ(text.exit_code, 0) << text.output;
+    EXPECT_NE(text.output.find("64x32 path render at 16 spp"), std::string::npos) << text.output;
+    EXPECT_NE(test::run_cli("info /no/such.obj").exit_code, 0);
+    EXPECT_NE(test::run_cli("info builtin:cornell --integrator magic").exit_code, 0);
+}
+
+TEST(InfoCli, LargeScenesMatchTheirPublishedCounts) {
+    // The scenes README's table: triangles by fan triangulation, vertices, degenerate faces.
+    const struct {
+        const char* file;
+        std::size_t triangles, vertices, materials;
+    } scenes[] = {{"bunny/stanford-bunny.obj", 69451, 35947, 1},
+                  {"sponza/sponza.obj", 66445, 66350, 19}};
+    for (const auto& s : scenes) {
+        if (const std::string why = test::missing_scene(s.file); !why.empty()) GTEST_SKIP() << why;
+        const nlohmann::json info = info_json((test::scenes_dir() / s.file).string());
+        EXPECT_EQ(info["triangles"].get<std::size_t>(), s.triangles) << s.file;
+        EXPECT_EQ(info["vertices"].get<std::size_t>(), s.vertices) << s.file;
+        EXPECT_EQ(info["materials"].size(), s.materials) << s.file;
+    }
+}
+
+}  // namespace
+}  // namespace edacrt

@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 #include <random>
+#include <span>
 #include <sstream>
 
 #include "camera_options.h"
@@ -30,8 +31,9 @@ struct AccuracyOptions {
     bool skip_naive = false;
 };
 
-// The sample that times the brute-force passes up front, and the figure worth announcing.
-constexpr std::size_t kEstimateRays = 256;
+// How long a sample must take to time the brute-force passes up front, and the estimate worth
+// announcing.
+constexpr double kEstimateSeconds = 0.25;
 constexpr double kAnnounceSeconds = 10.0;
 
 using RaySet = std::pair<std::string, std::vector<Ray>>;
@@ -140,26 +142,36 @@ struct BruteForceEstimate {
     double reference = 0.0, naive = 0.0;
 };
 
+/// Seconds `pass` would take on all of `rays`: timed on 64, 256, ... of them (spread over the
+/// sets) until one sample takes long enough to be measured well.
+double extrapolate(const std::vector<Ray>& rays,
+                   const std::function<void(std::span<const Ray>)>& pass) {
+    for (std::size_t n = 64;; n *= 4) {
+        const std::size_t stride = std::max<std::size_t>(1, rays.size() / n);
+        std::vector<Ray> sample;
+        for (std::size_t i = 0; i < rays.size(); i += stride) sample.push_back(rays[i]);
+        const auto start = std::chrono::steady_clock::now();
+        pass(sample);
+        const double seconds = seconds_since(start);
+        if (seconds >= kEstimateSeconds || stride == 1)
+            return seconds * double(rays.size()) / double(sample.size());
+    }
+}
+
 BruteForceEstimate estimate_brute_force(const Scene& scene, const std::vector<Triangle>& triangles,
                                         const std::vector<RaySet>& sets, bool naive, int repeats) {
-    std::size_t total = 0;
-    for (const RaySet& set : sets) total += set.second.size();
-    const std::size_t stride = std::max<std::size_t>(1, total / kEstimateRays);
-    std::vector<Ray> sample;
-    for (const RaySet& set : sets)
-        for (std::size_t i = 0; i < set.second.size(); i += stride) sample.push_back(set.second[i]);
-    const double scale = double(total) / double(sample.size());
+    std::vector<Ray> rays;
+    for (const RaySet& set : sets) rays.insert(rays.end(), set.second.begin(), set.second.end());
     BruteForceEstimate estimate;
-    auto start = std::chrono::steady_clock::now();
-    reference_hits(triangles, sample);
-    estimate.reference = seconds_since(start) * scale;
+    estimate.reference =
+        extrapolate(rays, [&](std::span<const Ray> sample) { reference_hits(triangles, sample); });
     if (naive) {
         const auto tracer = make_tracer(Method::naive);
         tracer->set_scene(scene);
-        std::vector<Hit> hits(sample.size());
-        start = std::chrono::steady_clock::now();
-        tracer->trace(sample, hits, Query::closest);
-        estimate.naive = seconds_since(start) * scale * repeats;
+        estimate.naive = repeats * extrapolate(rays, [&](std::span<const Ray> sample) {
+                             std::vector<Hit> hits(sample.size());
+                             tracer->trace(sample, hits, Query::closest);
+                         });
     }
     return estimate;
 }
@@ -206,17 +218,18 @@ void run(const AccuracyOptions& o) {
         estimate_brute_force(scene, triangles, sets, naive, o.repeats);
     if (style != ProgressStyle::quiet && estimate.reference + estimate.naive >= kAnnounceSeconds) {
         const std::string reference = "the double-precision brute-force reference";
-        std::cerr << "accuracy: estimated from " << kEstimateRays
-                  << " rays: " << format_duration(estimate.reference) << " for " << reference;
+        std::cerr << "accuracy: estimated " << format_duration(estimate.reference) << " for "
+                  << reference;
         if (naive)
-            std::cerr << ", " << format_duration(estimate.naive) << " for naive (" << o.repeats
-                      << " timed runs); --skip-naive leaves naive out, the hits are still "
-                         "compared with "
+            std::cerr << " and " << format_duration(estimate.naive) << " for naive (" << o.repeats
+                      << (o.repeats == 1 ? " timed run" : " timed runs")
+                      << "); --skip-naive leaves naive out, the hits are still compared with "
                       << reference << "\n";
+        else if (o.skip_naive)
+            std::cerr << "; naive is skipped (--skip-naive), every method is still compared "
+                         "with that reference\n";
         else
-            std::cerr << (o.skip_naive ? "; naive skipped (--skip-naive), every method is still "
-                                         "compared with it\n"
-                                       : "\n");
+            std::cerr << "\n";
     }
     std::vector<std::vector<ReferenceHit>> references;
     {

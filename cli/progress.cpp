@@ -137,13 +137,13 @@ std::string Progress::line(bool terminal) const {
     if (amount_ > 0.0 && step_seconds_ > 0.0)
         rate = unit_ == Unit::rays ? format("%.3g Mrays/s", amount_ / step_seconds_ * 1e-6)
                                    : format("%.3g spp/s", amount_ / step_seconds_);
-    // From the fraction's pace at the last update, counting down between updates.
+    // From the fraction's pace at the last update, counting down between updates; before the
+    // first, from the estimate made up front.
+    const bool done = known && fraction_ >= 1.0;
     std::optional<double> left;
-    if (known && fraction_ >= 1.0)
-        left.reset();
-    else if (known && fraction_ > 0.0)
+    if (!done && known && fraction_ > 0.0)
         left = std::max(step_seconds_ / fraction_ - now, 0.0);
-    else if (expected_seconds_)
+    else if (!done && expected_seconds_)
         left = std::max(*expected_seconds_ - now, 0.0);
 
     if (!terminal) {

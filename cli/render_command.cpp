@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -65,7 +66,7 @@ void run(const RenderOptions& o) {
     validate(settings);
     check_render_memory(settings, command_bytes_per_pixel(o));
     const ToneMap tone = parse_tone_map(o.tone_map);
-    parse_exr_pixel(o.exr_pixel);
+    const ExrPixel exr_pixel = parse_exr_pixel(o.exr_pixel);
     validate_exposure(o.exposure);
     if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
         throw InputError("--time-budget must be a finite number of seconds >= 0");
@@ -101,10 +102,12 @@ void run(const RenderOptions& o) {
         const int done = renderer.film().passes();
         const double fraction =
             std::max(double(done) / spp, o.time_budget > 0.0 ? elapsed / o.time_budget : 0.0);
-        const double mrays =
-            double(renderer.total().trace.rays) / renderer.total().trace_seconds * 1e-6;
+        const PassStats& sofar = renderer.total();
         char rays[32];
-        std::snprintf(rays, sizeof rays, "%.2f Mrays/s", mrays);
+        std::snprintf(rays, sizeof rays, "%.2f Mrays/s",
+                      sofar.trace_seconds > 0.0
+                          ? double(sofar.trace.rays) / sofar.trace_seconds * 1e-6
+                          : 0.0);
         progress.step(fraction, done, std::to_string(done) + of_spp + " spp", rays);
         nlohmann::json pass = {{"spp", renderer.film().passes()},
                                {"seconds", elapsed},
@@ -127,9 +130,10 @@ void run(const RenderOptions& o) {
     // A temporary only: the image is gone before the statistics trace below.
     save_image(
         o.out, renderer.film().mean(),
-        {o.exposure, tone, o.jpeg_quality, parse_exr_pixel(o.exr_pixel),
-         render_metadata({"edacrt render", scene.source, o.common.method, o.integrator,
-                          renderer.film().passes(), settings.seed, render_seconds, camera})});
+        {o.exposure, tone, o.jpeg_quality, exr_pixel,
+         render_metadata({"edacrt render", scene.source, std::string(method_name(tracer->method())),
+                          o.integrator, renderer.film().passes(), settings.seed, render_seconds,
+                          camera})});
 
     const PassStats& total = renderer.total();
     const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;

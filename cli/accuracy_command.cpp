@@ -257,13 +257,16 @@ void run(const AccuracyOptions& o) {
         tracer->set_scene(scene);
         double traced = 0.0;
         for (std::size_t s = 0; s < sets.size(); ++s) {
-            int run = 0;
-            progress.begin(sets[s].first + ", run 1/" + std::to_string(o.repeats));
+            const auto label = [&](int run) {
+                return sets[s].first + ", run " + std::to_string(run) + "/" +
+                       std::to_string(o.repeats);
+            };
+            int run = 1;
+            progress.begin(label(run));
             const Accuracy a = measure(*tracer, triangles, sets[s], references[s], o.repeats, [&] {
                 traced += double(sets[s].second.size());
-                progress.step(traced / method_rays, traced,
-                              sets[s].first + ", run " + std::to_string(++run) + "/" +
-                                  std::to_string(o.repeats));
+                progress.step(traced / method_rays, traced, label(run) + " done");
+                if (run < o.repeats) progress.begin(label(++run));
             });
             const double n = double(sets[s].second.size());
             const double mrays = n / a.seconds * 1e-6;

@@ -172,8 +172,8 @@ TEST_F(ProgressCli, AccuracyShowsEachPhaseAndCanSkipNaive) {
     ASSERT_EQ(all.exit_code, 0) << all.output;
     for (const char* step :
          {"\nreference: camera done (", "\nreference: axis-parallel done (100.0%",
-          "\nnaive: camera, run 1/1 (", "\nnaive: axis-parallel, run 1/1 (100.0%",
-          "\nedacrt: axis-parallel, run 1/1 (100.0%", "\nnaive   camera  "})
+          "\nnaive: camera, run 1/1 done (", "\nnaive: axis-parallel, run 1/1 done (100.0%",
+          "\nedacrt: axis-parallel, run 1/1 done (100.0%", "\nnaive   camera  "})
         EXPECT_NE(all.output.find(step), std::string::npos) << step << "\n" << all.output;
     EXPECT_EQ(all.output.find('\033'), std::string::npos) << all.output;
 

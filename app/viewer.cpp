@@ -10,17 +10,26 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <iostream>
 #include <optional>
 
+#include "camera_options.h"
+#include "command_line.h"
 #include "display.h"
+#include "panels/panels.h"
+#include "render/default_camera.h"
 #include "render/film.h"
 #include "render/image.h"
 #include "render/render_memory.h"
+#include "render/wavefront.h"
 #include "script.h"
 #include "util/error.h"
 #include "viewer_state.h"
@@ -42,13 +51,15 @@ std::vector<std::string> scene_list(const std::filesystem::path& assets) {
     return list;
 }
 
-/// Loads a scene into the state; on failure keeps the previous one and shows the error.
-void load_into(ViewerState& s, const std::string& spec) {
+/// Loads a scene into the state; on failure keeps the previous one and shows the error. The
+/// camera flags override the scene's view (cli/camera_options.h), for the first scene only.
+void load_into(ViewerState& s, const std::string& spec,
+               const cli::CameraOptions& flags = cli::CameraOptions{}) {
     try {
         auto scene = std::make_shared<Scene>(load_scene(spec));
         if (scene->triangle_count() == 0) throw InputError(spec + ": the scene has no triangles");
-        s.scene_camera = scene->camera.value_or(frame_box(scene->bounds()));
-        s.camera.reset(s.scene_camera);
+        s.scene_camera = default_camera(*scene);
+        s.camera.reset(cli::choose_camera(*scene, flags));
         s.scene_label =
             scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
         for (const std::string& w : scene->warnings)
@@ -61,6 +72,8 @@ void load_into(ViewerState& s, const std::string& spec) {
     }
 }
 
+/// The request for the current settings; width x height: the image region in framebuffer
+/// pixels.
 RenderRequest make_request(const ViewerState& s, int width, int height) {
     RenderRequest r;
     r.scene = s.scene;
@@ -117,9 +130,13 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
     }
 }
 
-/// Traces one camera ray per pixel with every method (for the statistics panel).
+/// Traces one camera ray per pixel with every method (the Statistics tab), once the render
+/// has paused (its pass in flight finished): the median of three traces after the tracer's
+/// set_scene, which the median includes (per-frame cost: nothing is kept between frames).
 std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
-                                          int width, int height, EdacrtParams params) {
+                                          int width, int height, EdacrtParams params,
+                                          const RenderWorker* worker) {
+    worker->wait_idle(std::chrono::seconds(60));
     const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
     std::vector<Hit> hits(rays.size());
     std::vector<MethodTotals> out;
@@ -131,11 +148,16 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Ca
             if (method == Method::naive &&
                 double(rays.size()) * double(scene->triangle_count()) > 5e9)
                 throw InputError("skipped: too slow here");
-            const auto tracer = make_tracer(method, params);
-            tracer->set_scene(*scene);
-            const auto start = Clock::now();
-            totals.stats = tracer->trace(rays, hits, Query::closest);
-            totals.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            double times[3];
+            for (double& t : times) {
+                const auto start = Clock::now();
+                const auto tracer = make_tracer(method, params);
+                tracer->set_scene(*scene);
+                totals.stats = tracer->trace(rays, hits, Query::closest);
+                t = std::chrono::duration<double>(Clock::now() - start).count();
+            }
+            std::sort(std::begin(times), std::end(times));
+            totals.seconds = times[1];
         } catch (const std::exception& e) {
             totals.error = e.what();
         }
@@ -144,24 +166,26 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Ca
     return out;
 }
 
-/// Records the recursion of the view's pixel-centre camera rays, following one pixel.
-std::shared_ptr<const Analysis> analyse(std::shared_ptr<const Scene> scene, Camera camera,
-                                        int width, int height, Method method, EdacrtParams params,
-                                        std::int64_t pixel) {
+/// Records the recursion of the first pass's camera rays of the render in progress (the batch
+/// the statistics and heat maps show), following one pixel.
+std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel) {
     auto a = std::make_shared<Analysis>();
-    a->camera = camera;
-    a->width = width;
-    a->height = height;
-    a->method = method;
+    a->scene = request.scene;
+    a->camera = request.camera;
+    a->width = request.settings.width;
+    a->height = request.settings.height;
+    a->seed = request.settings.seed;
+    a->method = request.method;
+    a->params = request.params;
     a->pixel = pixel;
     try {
-        const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
+        const std::vector<Ray> rays = first_pass_camera_rays(request.camera, request.settings);
         std::vector<Hit> hits(rays.size());
         auto detail = std::make_shared<TraceDetail>();
         detail->max_nodes = 300'000;
         detail->follow_ray = pixel;
-        const auto tracer = make_tracer(method, params);
-        tracer->set_scene(*scene);
+        const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
+        tracer->set_scene(*request.scene);
         tracer->trace(rays, hits, Query::closest, detail.get());
         if (pixel >= 0 && std::size_t(pixel) < hits.size()) a->hit = hits[std::size_t(pixel)];
         a->detail = std::move(detail);
@@ -171,76 +195,16 @@ std::shared_ptr<const Analysis> analyse(std::shared_ptr<const Scene> scene, Came
     return a;
 }
 
-/// Applies `set KEY VALUE` of a script to the UI settings; throws InputError.
-void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
-    UiSettings& ui = s.ui;
-    EdacrtParams& p = ui.params;
-    const auto number = [&] {
-        try {
-            std::size_t used = 0;
-            const double v = std::stod(value, &used);
-            if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
-            return v;
-        } catch (const std::exception&) {
-            throw InputError("'" + key + "' needs a number, got '" + value + "'");
-        }
-    };
-    if (key == "method")
-        ui.method = parse_method(value);
-    else if (key == "embree-mode")
-        ui.embree_mode = parse_embree_mode(value);
-    else if (key == "integrator")
-        ui.integrator = parse_integrator(value);
-    else if (key == "primary")
-        ui.primary = parse_primary_shading(value);
-    else if (key == "spp")
-        ui.spp_target = int(number());
-    else if (key == "max-depth")
-        ui.max_depth = int(number());
-    else if (key == "ao-samples")
-        ui.ao_samples = int(number());
-    else if (key == "resolution")
-        ui.resolution_scale = float(number());
-    else if (key == "threads")
-        ui.threads = int(number());
-    else if (key == "seed")
-        ui.seed = int(number());
-    else if (key == "pause")
-        ui.paused = number() != 0;
-    else if (key == "preset")
-        p = preset_params(value);
-    else if (const ParamInfo* info = find_param(key))
-        set_param(p, *info, value);
-    else if (key == "exposure") {
-        const auto exposure = float(number());
-        validate_exposure(exposure);
-        s.exposure = exposure;
-    } else if (key == "scene")
-        s.pending_loads.push_back(value);
-    else if (key == "level")
-        s.explorer_level = int(number());
-    else if (key == "node")
-        s.explorer_node = std::int32_t(number());
-    else
-        throw InputError("unknown setting '" + key + "'");
-}
-
-View parse_view(const std::string& name) {
-    if (name == "render") return View::render;
-    if (name == "box") return View::box_tests;
-    if (name == "triangle") return View::triangle_tests;
-    if (name == "depth") return View::depth;
-    if (name == "order") return View::order_misses;
-    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
-}
-
-/// Saves the default framebuffer (what the window shows) as PNG.
-void save_window(const std::string& path, int width, int height) {
+/// Saves a region of the back buffer (what the window shows; x, y from the top-left, in
+/// framebuffer pixels) as PNG, creating the folder.
+void save_framebuffer(const std::string& path, int x, int y, int width, int height,
+                      int framebuffer_height) {
     const std::size_t row = std::size_t(width) * 3;
     std::vector<std::uint8_t> pixels(row * std::size_t(height));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    glReadPixels(x, framebuffer_height - y - height, width, height, GL_RGB, GL_UNSIGNED_BYTE,
+                 pixels.data());
     // OpenGL rows start at the bottom.
     for (std::size_t top = 0, bottom = std::size_t(height) - 1; top < bottom; ++top, --bottom)
         std::swap_ranges(pixels.begin() + std::ptrdiff_t(top * row),
@@ -249,6 +213,21 @@ void save_window(const std::string& path, int width, int height) {
     const std::filesystem::path out(path);
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     write_png_rgb8(out, pixels, width, height);
+}
+
+/// A file name from the scene and the time: out/sponza-20261201-235959.png.
+std::string timestamped(const ViewerState& s, const std::string& extension) {
+    const std::time_t now = std::time(nullptr);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+    std::string stem = std::filesystem::path(s.scene_path).stem().string();
+    if (stem.empty() || s.scene_path.rfind("builtin:", 0) == 0)
+        stem = s.scene_path.substr(0, s.scene_path.find(':', 8));
+    std::replace_if(
+        stem.begin(), stem.end(), [](char c) { return !std::isalnum(c) && c != '-'; }, '_');
+    return (std::filesystem::path(s.save_dir.empty() ? "." : s.save_dir) /
+            (stem + "-" + stamp + extension))
+        .string();
 }
 
 /// Runs the script one step per frame; false when it has ended (or failed: `error` is set).
@@ -262,13 +241,20 @@ class ScriptRunner {
     void step(ViewerState& s, int shown_spp, std::string& screenshot, bool& quit) {
         while (next_ < commands_.size()) {
             const ScriptCommand& c = commands_[next_];
+            const auto fail = [&](const std::string& what) {
+                throw InputError("script line " + std::to_string(c.line) + ": " + what);
+            };
+            const auto choice = [&](const char* yes, const char* no) {
+                if (c.args[0] != yes && c.args[0] != no)
+                    fail("'" + c.verb + "' takes " + yes + " or " + no);
+                return c.args[0] == yes;
+            };
             if (c.verb == "wait-spp") {
                 if (!waiting_) wait_start_ = Clock::now();
                 waiting_ = true;
                 if (shown_spp < std::stoi(c.args[0])) {
                     if (Clock::now() - wait_start_ > std::chrono::minutes(5))
-                        throw InputError("script line " + std::to_string(c.line) +
-                                         ": timed out waiting for " + c.args[0] + " spp");
+                        fail("timed out waiting for " + c.args[0] + " spp");
                     return;
                 }
                 waiting_ = false;
@@ -285,13 +271,32 @@ class ScriptRunner {
                 return;  // the next frame submits the change before anything waits on it
             } else if (c.verb == "view") {
                 s.view = parse_view(c.args[0]);
-            } else if (c.verb == "panel") {
-                std::string name = c.args[0];
-                std::replace(name.begin(), name.end(), '_', ' ');
-                if (c.args[1] != "open" && c.args[1] != "closed")
-                    throw InputError("script line " + std::to_string(c.line) +
-                                     ": panel state is open or closed");
-                s.collapse_panels.emplace_back(name, c.args[1] == "closed");
+            } else if (c.verb == "tab") {
+                s.select_tab = c.args[0];
+                std::replace(s.select_tab.begin(), s.select_tab.end(), '_', ' ');
+            } else if (c.verb == "panels") {
+                s.panels_hidden = choice("hidden", "shown");
+            } else if (c.verb == "analysis") {
+                s.analysis_open = choice("open", "closed");
+            } else if (c.verb == "help") {
+                s.show_help = choice("on", "off");
+            } else if (c.verb == "check-layout") {
+                std::string report;
+                for (const std::string& p : s.layout_problems) report += "\n  " + p;
+                if (!report.empty()) fail("layout problems:" + report);
+                std::cout << "layout ok: " << s.placements.size() << " panels, image "
+                          << s.layout.image.x << " " << s.layout.image.y << " " << s.layout.image.w
+                          << " " << s.layout.image.h << "\n";
+            } else if (c.verb == "save-view" || c.verb == "save-linear") {
+                s.save_path = c.args[0];
+                s.save_requested =
+                    c.verb == "save-view" ? ViewerState::Save::shown : ViewerState::Save::linear;
+                ++next_;
+                return;  // saved in the next frame, one file per frame
+            } else if (c.verb == "write-command") {
+                std::ofstream out(c.args[0]);
+                out << s.command_line << "\n";
+                if (!out) fail("cannot write " + c.args[0]);
             } else if (c.verb == "record") {
                 s.analysis_requested = true;
                 analysis_asked_ = true;
@@ -327,6 +332,39 @@ class ScriptRunner {
     Clock::time_point wait_start_;
 };
 
+/// Keys (while no text field has the keyboard): Tab or F1 hide the panels, H or ? the help,
+/// F12 saves the image, Esc quits, R resets the view, WASD/QE fly. ImGui 1.86 indexes keys
+/// by the backend's (GLFW's) key codes.
+void handle_keys(ViewerState& s, float dt, bool& quit) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) quit = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) s.save_requested = ViewerState::Save::shown;
+    if (io.WantCaptureKeyboard) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
+        s.panels_hidden = !s.panels_hidden;
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false) ||
+        (ImGui::IsKeyPressed(GLFW_KEY_SLASH, false) && io.KeyShift))
+        s.show_help = !s.show_help;
+    const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
+    const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+    const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+    const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+    if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
+    if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+}
+
+/// The region in framebuffer pixels: x, y from the top-left, width, height.
+struct PixelRect {
+    int x = 0, y = 0, w = 0, h = 0;
+};
+PixelRect to_pixels(const Rect& r, float scale_x, float scale_y) {
+    const int x0 = int(std::lround(r.x * scale_x)), y0 = int(std::lround(r.y * scale_y));
+    const int x1 = int(std::lround(r.right() * scale_x)),
+              y1 = int(std::lround(r.bottom() * scale_y));
+    return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
+
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
@@ -341,10 +379,17 @@ int run_viewer(const ViewerOptions& options) {
         std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
         return 1;
     }
-    load_into(s, options.scene);
+    s.panels_hidden = options.hide_panels;
+    load_into(s, options.scene, options.camera);
     if (!s.scene) {
         std::cerr << "edacrt_viewer: error: " << s.scene_error << "\n";
         return 1;
+    }
+    s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
+    try {
+        if (!s.bookmarks_path.empty()) s.bookmarks.load(s.bookmarks_path);
+    } catch (const std::exception& e) {
+        std::cerr << "edacrt_viewer: warning: " << e.what() << " (bookmarks start empty)\n";
     }
     const std::filesystem::path assets = options.assets_dir.empty()
                                              ? std::filesystem::path("assets")
@@ -393,7 +438,7 @@ int run_viewer(const ViewerOptions& options) {
     {
         Display display;
         RenderWorker worker;
-        RenderRequest submitted;
+        RenderRequest& submitted = s.submitted;
         std::uint64_t request_id = 0;
         std::shared_ptr<const Frame> uploaded, shown_last_frame;
         View uploaded_view = View::render;
@@ -417,58 +462,62 @@ int run_viewer(const ViewerOptions& options) {
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
-            for (const auto& [name, closed] : std::exchange(s.collapse_panels, {}))
-                ImGui::SetWindowCollapsed(name.c_str(), closed);
             const ImGuiIO& io = ImGui::GetIO();
+            s.layout = compute_layout({io.DisplaySize.x, io.DisplaySize.y, ImGui::GetFontSize(),
+                                       ImGui::GetFrameHeight(), s.panels_hidden, s.analysis_open});
+            const Rect& image = s.layout.image;
+            const auto in_image = [&](ImVec2 p) {
+                return p.x >= image.x && p.y >= image.y && p.x < image.right() &&
+                       p.y < image.bottom();
+            };
             // The traversal debugger's pixel: a click on the image while picking, or the script.
             std::optional<ImVec2> pick = script ? script->take_pick() : std::nullopt;
-            if (s.picking && !io.WantCaptureMouse && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            if (s.picking && !io.WantCaptureMouse && in_image(io.MousePos) &&
+                ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                 pick = io.MousePos;
                 s.picking = false;
             }
-            if (pick && submitted.settings.width > 0) {
+            if (pick && submitted.settings.width > 0 && in_image(*pick)) {
                 const int x =
-                    std::clamp(int(pick->x / io.DisplaySize.x * float(submitted.settings.width)), 0,
-                               submitted.settings.width - 1);
-                const int y =
-                    std::clamp(int(pick->y / io.DisplaySize.y * float(submitted.settings.height)),
-                               0, submitted.settings.height - 1);
+                    std::clamp(int((pick->x - image.x) / image.w * float(submitted.settings.width)),
+                               0, submitted.settings.width - 1);
+                const int y = std::clamp(
+                    int((pick->y - image.y) / image.h * float(submitted.settings.height)), 0,
+                    submitted.settings.height - 1);
                 s.follow_pixel = std::int64_t(y) * submitted.settings.width + x;
                 s.analysis_requested = true;
             } else if (!io.WantCaptureMouse) {
+                // Drags that start on the image move the camera.
                 const ImVec2 d = io.MouseDelta;
-                if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
-                if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
-                    ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
-                    s.camera.pan(d.x, d.y, io.DisplaySize.y);
-                if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
+                const auto drag = [&](ImGuiMouseButton b) {
+                    return ImGui::IsMouseDragging(b) && in_image(io.MouseClickedPos[b]);
+                };
+                if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
+                if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
+                    s.camera.pan(d.x, d.y, image.h);
+                if (io.MouseWheel != 0.0f && in_image(io.MousePos)) s.camera.zoom(io.MouseWheel);
             }
-            if (!io.WantCaptureKeyboard) {
-                // ImGui 1.86 indexes keys by the backend's (GLFW's) key codes.
-                const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
-                const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
-                const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
-                const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-                if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
-                if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
-            }
+            handle_keys(s, dt, quit);
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
                 if (frame->error.empty()) s.frame = frame;
             }
-            draw_render_panel(s);
-            draw_params_panel(s);
-            draw_stats_panel(s);
-            draw_heatmap_panel(s, heat_max);
-            draw_recursion_panel(s);
-            draw_traversal_panel(s);
+            s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
+            s.placements.clear();
+            draw_controls(s);
+            draw_analysis(s, heat_max);
+            draw_help(s);
+            draw_heat_readout(s);
 
-            // A changed setting, camera, scene or window size starts a new render.
-            int width = 0, height = 0;
-            glfwGetFramebufferSize(window, &width, &height);
-            if (width > 0 && height > 0) {
-                RenderRequest request = make_request(s, width, height);
+            // A changed setting, camera, scene or image region starts a new render.
+            int fb_width = 0, fb_height = 0;
+            glfwGetFramebufferSize(window, &fb_width, &fb_height);
+            const float scale_x = io.DisplaySize.x > 0 ? float(fb_width) / io.DisplaySize.x : 1.0f;
+            const float scale_y = io.DisplaySize.y > 0 ? float(fb_height) / io.DisplaySize.y : 1.0f;
+            const PixelRect region = to_pixels(image, scale_x, scale_y);
+            if (region.w > 0 && region.h > 0) {
+                RenderRequest request = make_request(s, region.w, region.h);
                 const bool changed = fit_resolution(s, request, submitted) &&
                                      (request_id == 0 || request != submitted);
                 if (changed) {
@@ -477,8 +526,15 @@ int run_viewer(const ViewerOptions& options) {
                     request_id = worker.submit(std::move(request));
                 }
             }
+            s.command_line = render_command_line(
+                {s.scene_path, submitted.method, submitted.embree_mode, submitted.params,
+                 submitted.settings, submitted.camera, submitted.spp_target, s.exposure,
+                 std::array{"clamp", "reinhard", "aces"}[std::size_t(s.tone_map)],
+                 timestamped(s, ".png")});
 
-            worker.set_paused(s.ui.paused);
+            // The render pauses while methods are compared: their timings get the cores.
+            s.comparing = comparison.valid();
+            worker.set_paused(s.ui.paused || s.comparing);
             // Show the newest pass (of the request in force); upload only when it is new.
             if (s.frame && (s.frame != uploaded || s.view != uploaded_view)) {
                 if (s.frame != uploaded) display.upload_render(s.frame->image);
@@ -495,9 +551,7 @@ int run_viewer(const ViewerOptions& options) {
                 submitted.settings.width > 0) {
                 s.analysis_requested = false;
                 s.analysis_running = true;
-                analysis = std::async(std::launch::async, analyse, s.scene, submitted.camera,
-                                      submitted.settings.width, submitted.settings.height,
-                                      s.ui.method, s.ui.params, s.follow_pixel);
+                analysis = std::async(std::launch::async, analyse, submitted, s.follow_pixel);
             }
             if (analysis.valid() &&
                 analysis.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
@@ -506,32 +560,61 @@ int run_viewer(const ViewerOptions& options) {
             }
             if (s.compare_requested && !comparison.valid()) {
                 s.compare_requested = false;
-                comparison =
-                    std::async(std::launch::async, compare_methods, s.scene, s.camera.camera(),
-                               submitted.settings.width, submitted.settings.height, s.ui.params);
+                worker.set_paused(true);
+                comparison = std::async(std::launch::async, compare_methods, s.scene,
+                                        submitted.camera, submitted.settings.width,
+                                        submitted.settings.height, s.ui.params, &worker);
             }
             if (comparison.valid() &&
                 comparison.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
                 s.comparison = comparison.get();
-            if (s.save_requested && s.frame) {
-                s.save_requested = false;
-                try {
-                    const Image shown = tone_map(s.frame->image, s.exposure, ToneMap(s.tone_map));
-                    write_png(s.save_path, shown);
-                    s.status = "saved " + s.save_path;
-                } catch (const std::exception& e) {
-                    s.status = e.what();
-                }
-            }
 
             const bool heat =
                 s.view != View::render && s.frame && s.frame->detail && uploaded_view == s.view;
             ImGui::Render();
-            glViewport(0, 0, width, height);
+            glViewport(0, 0, fb_width, fb_height);
             glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
             glClear(GL_COLOR_BUFFER_BIT);
+            // The image fills its region (the render has the region's aspect).
+            glViewport(region.x, fb_height - region.y - region.h, region.w, region.h);
             if (s.frame) display.draw(heat, {s.exposure, s.tone_map}, heat_max, s.heat_log);
+            glViewport(0, 0, fb_width, fb_height);
+
+            // Saving: the image region as shown (overlays are drawn with the UI), or the
+            // linear render.
+            const auto save_shown = [&] {
+                const std::string path = s.save_path.empty() ? timestamped(s, ".png") : s.save_path;
+                save_framebuffer(path, region.x, region.y, region.w, region.h, fb_height);
+                s.status = "saved " + path;
+                std::cout << "saved " << path << "\n";
+            };
+            const auto save = std::exchange(s.save_requested, ViewerState::Save::none);
+            try {
+                if (save == ViewerState::Save::shown && !s.save_overlays) save_shown();
+                if (save == ViewerState::Save::linear && s.frame) {
+                    const std::string path =
+                        s.save_path.empty() ? timestamped(s, ".pfm") : s.save_path;
+                    const std::filesystem::path out(path);
+                    if (out.has_parent_path())
+                        std::filesystem::create_directories(out.parent_path());
+                    write_pfm(path, s.frame->image);
+                    s.status = "saved " + path;
+                    std::cout << "saved " << path << "\n";
+                }
+            } catch (const std::exception& e) {
+                s.status = e.what();
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            }
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            try {
+                if (save == ViewerState::Save::shown && s.save_overlays) save_shown();
+            } catch (const std::exception& e) {
+                s.status = e.what();
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            }
+            if (save != ViewerState::Save::none) s.save_path.clear();
+            s.layout_problems =
+                layout_problems(s.layout, io.DisplaySize.x, io.DisplaySize.y, s.placements);
 
             ++frame_number;
             std::string screenshot;
@@ -553,9 +636,11 @@ int run_viewer(const ViewerOptions& options) {
                     quit = true;
                 }
                 if (!screenshot.empty()) {
-                    save_window(screenshot, width, height);
-                    std::cout << "screenshot " << screenshot << " (" << width << "x" << height
-                              << ", " << shown_spp << " spp, frame " << frame_number << ")\n";
+                    save_framebuffer(screenshot, 0, 0, fb_width, fb_height, fb_height);
+                    std::cout << "screenshot " << screenshot << " (" << fb_width << "x" << fb_height
+                              << ", " << shown_spp << " spp, frame " << frame_number
+                              << ", image region " << region.x << " " << region.y << " " << region.w
+                              << " " << region.h << ")\n";
                 }
             } catch (const std::exception& e) {
                 std::cerr << "edacrt_viewer: error: " << e.what() << "\n";

@@ -15,7 +15,7 @@ struct CameraOptions {
 
 void add_camera_options(CLI::App& command, CameraOptions& options);
 
-/// The scene's own camera, else one that frames the scene; overridden flag by flag.
+/// default_camera(scene), overridden flag by flag.
 /// Throws InputError for an invalid result.
 Camera choose_camera(const Scene& scene, const CameraOptions& options);
 

@@ -1,11 +1,12 @@
-// Render panel: scene, method, integrator, samples, resolution, threads, seed, pause, save,
-// progress.
+// Render tab: method, integrator, samples, resolution, threads, seed, pause, tone mapping,
+// saving, progress.
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <cstdio>
 
-#include "viewer_state.h"
+#include "panels.h"
 
 namespace edacrt::app {
 namespace {
@@ -34,25 +35,9 @@ constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::single, EmbreeMode::packet8, 
 
 }  // namespace
 
-void draw_render_panel(ViewerState& s) {
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(330, 412), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Render");
-
-    ImGui::TextUnformatted(s.scene_label.c_str());
-    if (ImGui::BeginCombo("scene", "choose...")) {
-        for (const std::string& name : s.scene_list)
-            if (ImGui::Selectable(name.c_str())) s.pending_loads.push_back(name);
-        ImGui::EndCombo();
-    }
-    ImGui::InputText("path", &s.scene_path);
-    ImGui::SameLine();
-    if (ImGui::Button("Load")) s.pending_loads.push_back(s.scene_path);
-    if (!s.scene_error.empty())
-        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.scene_error.c_str());
-    ImGui::Separator();
-
+void draw_render_tab(ViewerState& s) {
     UiSettings& ui = s.ui;
+    ImGui::PushItemWidth(-ImGui::CalcTextSize("resolution").x - ImGui::GetStyle().ItemSpacing.x);
     combo("method", ui.method, kMethods, method_name);
     if (ui.method == Method::embree)
         combo("embree mode", ui.embree_mode, kEmbreeModes, embree_mode_name);
@@ -61,27 +46,43 @@ void draw_render_panel(ViewerState& s) {
         combo("shading", ui.primary, kShadings, primary_shading_name);
     if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
     if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
-    ImGui::SliderInt("spp target", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("resolution", &ui.resolution_scale, 0.125f, 1.0f, "%.3f x window");
-    if (!s.resolution_error.empty())
-        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.resolution_error.c_str());
+    ImGui::SliderInt("spp", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per pixel to accumulate");
+    ImGui::SliderFloat("resolution", &ui.resolution_scale, 0.125f, 1.0f, "%.3f x image");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("render size as a fraction of the image region's pixels");
+    if (!s.resolution_error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+        ImGui::TextWrapped("%s", s.resolution_error.c_str());
+        ImGui::PopStyleColor();
+    }
     ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
     ImGui::InputInt("seed", &ui.seed);
     ImGui::Checkbox("pause", &ui.paused);
-    ImGui::SameLine();
-    if (ImGui::Button("reset view")) s.camera.reset(s.scene_camera);
 
     ImGui::Separator();
     ImGui::SliderFloat("exposure", &s.exposure, -8.0f, 8.0f, "%.1f stops");
     ImGui::Combo("tone map", &s.tone_map, "clamp\0Reinhard\0ACES\0");
-    ImGui::InputText("##save", &s.save_path);
+    ImGui::PopItemWidth();
+
+    ImGui::Separator();
+    if (ImGui::Button("save PNG (F12)")) s.save_requested = ViewerState::Save::shown;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the image region as shown: the render or heat map, tone-mapped");
     ImGui::SameLine();
-    if (ImGui::Button("save PNG")) s.save_requested = true;
-    if (!s.status.empty()) ImGui::TextUnformatted(s.status.c_str());
+    ImGui::Checkbox("overlays", &s.save_overlays);
+    ImGui::SameLine();
+    if (ImGui::Button("save PFM")) s.save_requested = ViewerState::Save::linear;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the render's linear radiance, float RGB");
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("folder").x - ImGui::GetStyle().ItemSpacing.x);
+    ImGui::InputText("folder", &s.save_dir);
+    if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
 
     ImGui::Separator();
     if (!s.render_error.empty()) {
-        ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.render_error.c_str());
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+        ImGui::TextWrapped("%s", s.render_error.c_str());
+        ImGui::PopStyleColor();
     } else if (s.frame) {
         const Frame& f = *s.frame;
         const double mrays = f.total.trace_seconds > 0
@@ -89,11 +90,11 @@ void draw_render_panel(ViewerState& s) {
                                  : 0.0;
         ImGui::Text("%dx%d  %s%d spp  %.2f s", f.image.width, f.image.height,
                     f.preview ? "preview, " : "", f.spp, f.seconds);
-        ImGui::Text("%.2f Mrays/s in the tracer, %.0f%% of the time", mrays,
+        ImGui::Text("%.2f Mrays/s in the tracer (%.0f%%)", mrays,
                     f.seconds > 0 ? 100.0 * f.total.trace_seconds / f.seconds : 0.0);
         ImGui::ProgressBar(float(f.spp) / float(std::max(ui.spp_target, 1)));
+        if (s.comparing) ImGui::TextDisabled("paused while methods are compared");
     }
-    ImGui::End();
 }
 
 }  // namespace edacrt::app

@@ -1,10 +1,12 @@
-// Per-level statistics of the camera rays of the first full-resolution pass: a table, bar
-// charts, totals and per-ray means, and the same totals for the other methods.
+// Statistics tab: per-level statistics of the camera rays of the first full-resolution pass
+// (the batch the heat maps, the explorer and the debugger show): a table, bar charts, totals
+// and per-ray means; and every method timed on the view's camera rays.
 #include <imgui.h>
 
+#include <algorithm>
 #include <vector>
 
-#include "viewer_state.h"
+#include "panels.h"
 
 namespace edacrt::app {
 namespace {
@@ -17,17 +19,56 @@ void bars(const char* label, const std::vector<LevelStats>& levels,
                          ImVec2(0, 60));
 }
 
+/// Every method on the view's pixel-centre camera rays, the render paused meanwhile.
+void compare_section(ViewerState& s) {
+    ImGui::Separator();
+    if (ImGui::Button(s.comparing ? "comparing..." : "compare methods") && !s.comparing)
+        s.compare_requested = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("one camera ray per pixel, every method, median of 3 (render paused)");
+    if (s.comparison.empty()) return;
+    const MethodTotals* embree = nullptr;
+    for (const MethodTotals& m : s.comparison)
+        if (m.method == Method::embree && m.error.empty()) embree = &m;
+    const ImGuiTableFlags flags =
+        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
+    const float height = float(s.comparison.size() + 2) * ImGui::GetFrameHeightWithSpacing();
+    if (!ImGui::BeginTable("compare", 6, flags, ImVec2(0, height))) return;
+    for (const char* h : {"method", "ms", "Mrays/s", "/ embree", "box tests/ray", "tri tests/ray"})
+        ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const MethodTotals& m : s.comparison) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        cell_text("%s", std::string(method_name(m.method)).c_str());
+        ImGui::TableNextColumn();
+        if (!m.error.empty()) {
+            cell_text("%s", m.error.c_str());
+            continue;
+        }
+        const double n = double(std::max<std::uint64_t>(m.stats.rays, 1));
+        cell_text("%.1f", m.seconds * 1e3);
+        ImGui::TableNextColumn();
+        cell_text("%.1f", m.seconds > 0 ? n / m.seconds * 1e-6 : 0.0);
+        ImGui::TableNextColumn();
+        embree ? cell_text("%.2fx", m.seconds / std::max(embree->seconds, 1e-12))
+               : cell_text("n/a");
+        // Embree does not count its tests.
+        for (std::uint64_t tests : {m.stats.ray_box_tests, m.stats.ray_triangle_tests}) {
+            ImGui::TableNextColumn();
+            m.method == Method::embree ? cell_text("n/a") : cell_text("%.1f", double(tests) / n);
+        }
+    }
+    ImGui::EndTable();
+}
+
 }  // namespace
 
-void draw_stats_panel(ViewerState& s) {
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(display.x - 640, display.y - 390), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(630, 380), ImGuiCond_FirstUseEver);
-    ImGui::Begin("Per-level statistics");
+void draw_stats_tab(ViewerState& s) {
     const TraceDetail* detail = s.frame && s.frame->detail ? s.frame->detail.get() : nullptr;
     if (!detail) {
         ImGui::TextDisabled("waiting for the first full-resolution pass");
-        ImGui::End();
+        compare_section(s);
         return;
     }
     const auto& levels = detail->levels;
@@ -37,8 +78,11 @@ void draw_stats_panel(ViewerState& s) {
         tri += r.ray_triangle_tests;
     }
     const double rays = double(std::max<std::size_t>(detail->rays.size(), 1));
-    ImGui::Text("%zu camera rays: %.1f ray-box and %.1f ray-triangle tests per ray",
-                detail->rays.size(), double(box) / rays, double(tri) / rays);
+    ImGui::Text("%s: the first pass's %zu camera rays (%dx%d, 1 per pixel), one batch",
+                std::string(method_name(s.submitted.method)).c_str(), detail->rays.size(),
+                s.frame->image.width, s.frame->image.height);
+    ImGui::Text("%.1f ray-box and %.1f ray-triangle tests per ray", double(box) / rays,
+                double(tri) / rays);
     if (!levels.empty())
         ImGui::Text("one recursion; %llu rays entered the scene box",
                     static_cast<unsigned long long>(detail->root.entered));
@@ -55,27 +99,28 @@ void draw_stats_panel(ViewerState& s) {
                                  "rays down",  "filtered",   "skipped",    "tris",
                                  "sample box", "filter box", "tri tests",  "order 1st",
                                  "culled",     "alpha est",  "alpha true", "ms"};
-        if (ImGui::BeginTable("levels", 16, flags, ImVec2(0, 200))) {
+        const float rows = float(levels.size() + 3) * ImGui::GetTextLineHeightWithSpacing();
+        if (ImGui::BeginTable("levels", 16, flags, ImVec2(0, std::min(rows, 220.0f)))) {
             for (const char* h : headers) ImGui::TableSetupColumn(h);
             ImGui::TableSetupScrollFreeze(1, 1);
             ImGui::TableHeadersRow();
             const auto count = [](std::uint64_t v) {
                 ImGui::TableNextColumn();
-                ImGui::Text("%llu", static_cast<unsigned long long>(v));
+                cell_text("%llu", static_cast<unsigned long long>(v));
             };
             // The root filter: the batch against the scene box (rays in, rays down, filter
             // box tests and time; the other columns do not apply).
             const RootStats& root = detail->root;
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
-            ImGui::TextUnformatted("scene box");
+            cell_text("scene box");
             ImGui::TableSetColumnIndex(3);
-            ImGui::Text("%llu", static_cast<unsigned long long>(root.rays));
+            cell_text("%llu", static_cast<unsigned long long>(root.rays));
             count(root.entered);
             ImGui::TableSetColumnIndex(9);
-            ImGui::Text("%llu", static_cast<unsigned long long>(root.box_tests));
+            cell_text("%llu", static_cast<unsigned long long>(root.box_tests));
             ImGui::TableSetColumnIndex(15);
-            ImGui::Text("%.2f", root.seconds * 1e3);
+            cell_text("%.2f", root.seconds * 1e3);
             LevelStats total;
             for (std::size_t i = 0; i <= levels.size(); ++i) {
                 const bool is_total = i == levels.size();
@@ -83,7 +128,7 @@ void draw_stats_panel(ViewerState& s) {
                 if (!is_total) total += l;
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                is_total ? ImGui::TextUnformatted("total") : ImGui::Text("%zu", i);
+                is_total ? cell_text("total") : cell_text("%zu", i);
                 for (std::uint64_t v : {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
                                         l.filters_skipped, l.triangles, l.sample_box_tests,
                                         l.filter_box_tests, l.ray_triangle_tests})
@@ -91,15 +136,15 @@ void draw_stats_panel(ViewerState& s) {
                 ImGui::TableNextColumn();
                 const std::uint64_t ordered = l.order_hits + l.order_misses;
                 if (ordered > 0)
-                    ImGui::Text("%.0f%%", 100.0 * double(l.order_hits) / double(ordered));
+                    cell_text("%.0f%%", 100.0 * double(l.order_hits) / double(ordered));
                 count(l.culled_by_distance);
                 const double children = double(std::max<std::uint64_t>(l.alpha_children, 1));
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2f", l.alpha_estimated_sum / children);
+                cell_text("%.2f", l.alpha_estimated_sum / children);
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2f", l.alpha_true_sum / children);
+                cell_text("%.2f", l.alpha_true_sum / children);
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2f", l.seconds() * 1e3);
+                cell_text("%.2f", l.seconds() * 1e3);
             }
             ImGui::EndTable();
         }
@@ -108,33 +153,7 @@ void draw_stats_panel(ViewerState& s) {
         bars("box tests", levels, &LevelStats::ray_box_tests);
     }
 
-    ImGui::Separator();
-    if (ImGui::Button("compare methods")) s.compare_requested = true;
-    ImGui::SameLine();
-    ImGui::TextDisabled("traces one camera ray per pixel with every method");
-    if (!s.comparison.empty() && ImGui::BeginTable("compare", 4, ImGuiTableFlags_Borders)) {
-        for (const char* h : {"method", "ms", "box tests / ray", "tri tests / ray"})
-            ImGui::TableSetupColumn(h);
-        ImGui::TableHeadersRow();
-        for (const MethodTotals& m : s.comparison) {
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(std::string(method_name(m.method)).c_str());
-            ImGui::TableNextColumn();
-            if (!m.error.empty()) {
-                ImGui::TextUnformatted(m.error.c_str());
-                continue;
-            }
-            const double n = double(std::max<std::uint64_t>(m.stats.rays, 1));
-            ImGui::Text("%.1f", m.seconds * 1e3);
-            ImGui::TableNextColumn();
-            ImGui::Text("%.1f", double(m.stats.ray_box_tests) / n);
-            ImGui::TableNextColumn();
-            ImGui::Text("%.1f", double(m.stats.ray_triangle_tests) / n);
-        }
-        ImGui::EndTable();
-    }
-    ImGui::End();
+    compare_section(s);
 }
 
 }  // namespace edacrt::app

@@ -1,13 +1,13 @@
-// Recursion explorer (teaching): the boxes of one level of the current view's recursion over
-// the image, each node's rays, triangles and cost; a node's K - 1 candidate splits with their
+// Recursion tab, the explorer (teaching): the boxes of one level of the current view's recursion
+// over the image, each node's rays, triangles and cost; a node's K - 1 candidate splits with their
 // costs and the chosen one.
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "panels.h"
 #include "util/hash_random.h"
-#include "viewer_state.h"
 
 namespace edacrt::app {
 namespace {
@@ -21,7 +21,12 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
     ImGui::Text("node %d: %u rays, %u triangles, split along %c; leaf cost %.1f", s.explorer_node,
                 node.rays, node.triangles, "xyz"[std::max(node.axis, 0)], node.leaf_cost);
     s.hovered_candidate = -1;
-    if (!ImGui::BeginTable("candidates", 6, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg))
+    const float height = float(node.candidates.size() + 1) * ImGui::GetTextLineHeightWithSpacing() +
+                         2.0f * ImGui::GetStyle().CellPadding.y * float(node.candidates.size() + 1);
+    if (!ImGui::BeginTable("candidates", 6,
+                           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                           ImVec2(0, height + 4.0f)))
         return;
     for (const char* h : {"j", "N_L", "N_R", "a_L", "a_R", "cost"}) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
@@ -31,53 +36,51 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
         if (std::int32_t(j) == node.chosen)
             ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, IM_COL32(40, 110, 60, 255));
         ImGui::TableNextColumn();
-        ImGui::Text("%zu%s", j, std::int32_t(j) == node.chosen ? " *" : "");
+        cell_text("%zu%s", j, std::int32_t(j) == node.chosen ? " *" : "");
         if (ImGui::IsItemHovered()) s.hovered_candidate = std::int32_t(j);
         ImGui::TableNextColumn();
-        ImGui::Text("%u", c.left_triangles);
+        cell_text("%u", c.left_triangles);
         ImGui::TableNextColumn();
-        ImGui::Text("%u", c.right_triangles);
+        cell_text("%u", c.right_triangles);
         ImGui::TableNextColumn();
-        ImGui::Text("%.3f", c.alpha_left);
+        cell_text("%.3f", c.alpha_left);
         ImGui::TableNextColumn();
-        ImGui::Text("%.3f", c.alpha_right);
+        cell_text("%.3f", c.alpha_right);
         ImGui::TableNextColumn();
-        std::isfinite(c.cost) ? ImGui::Text("%.1f", c.cost) : ImGui::TextUnformatted("(empty)");
+        std::isfinite(c.cost) ? cell_text("%.1f", c.cost) : cell_text("(empty)");
     }
     ImGui::EndTable();
     ImGui::TextDisabled("cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row");
     // How good the estimate was: the share of all the node's rays that hit each chosen child.
     if (node.chosen >= 0)
-        ImGui::Text("true a_L %.3f, a_R %.3f (all %u rays); %s child first; L %s, R %s",
-                    node.alpha_true[0], node.alpha_true[1], node.rays,
-                    node.left_first ? "left" : "right",
-                    node.filter_skipped[0] ? "passed unfiltered" : "filtered",
-                    node.filter_skipped[1] ? "passed unfiltered" : "filtered");
+        ImGui::TextWrapped("true a_L %.3f, a_R %.3f (all %u rays); %s child first; L %s, R %s",
+                           node.alpha_true[0], node.alpha_true[1], node.rays,
+                           node.left_first ? "left" : "right",
+                           node.filter_skipped[0] ? "passed unfiltered" : "filtered",
+                           node.filter_skipped[1] ? "passed unfiltered" : "filtered");
 }
 
 }  // namespace
 
-void draw_recursion_panel(ViewerState& s) {
-    ImGui::SetNextWindowPos(ImVec2(350, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 300), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // opened when wanted
-    if (!ImGui::Begin("Recursion explorer")) {
-        ImGui::End();
-        return;
-    }
+void draw_recursion_tab(ViewerState& s) {
     if (ImGui::Button(s.analysis_running ? "recording..." : "record this view"))
         s.analysis_requested = true;
     ImGui::SameLine();
-    ImGui::TextDisabled("one camera ray per pixel, nodes kept");
+    ImGui::TextDisabled("the first pass's camera rays (the Statistics tab's batch), nodes kept");
     const Analysis* a = s.analysis.get();
     if (!a || !a->error.empty() || !a->detail || a->detail->nodes.empty()) {
         if (a && !a->error.empty())
-            ImGui::TextUnformatted(a->error.c_str());
+            ImGui::TextWrapped("%s", a->error.c_str());
         else if (a)
             ImGui::TextDisabled("(%s records no recursion)",
                                 std::string(method_name(a->method)).c_str());
-        ImGui::End();
         return;
+    }
+    if (s.analysis_stale) {
+        ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1),
+                           "stale: recorded for another view, scene or parameters; boxes hidden");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("re-record")) s.analysis_requested = true;
     }
     const auto& nodes = a->detail->nodes;
     int deepest = 0;
@@ -92,7 +95,9 @@ void draw_recursion_panel(ViewerState& s) {
 
     // The level's nodes: boxes over the image, and a list to pick one from.
     std::size_t shown = 0;
-    if (ImGui::BeginTable("nodes", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY,
+    if (ImGui::BeginTable("nodes", 5,
+                          ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
+                              ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, 130))) {
         for (const char* h : {"node", "rays", "tris", "kind", "filter"}) ImGui::TableSetupColumn(h);
         ImGui::TableSetupScrollFreeze(0, 1);
@@ -100,7 +105,7 @@ void draw_recursion_panel(ViewerState& s) {
         for (std::size_t i = 0; i < nodes.size(); ++i) {
             const NodeRecord& n = nodes[i];
             if (n.depth != s.explorer_level) continue;
-            if (shown++ < 4000) draw_box_overlay(*a, n.box, node_colour(i, 0.8f));
+            if (shown++ < 4000) draw_box_overlay(s, *a, n.box, node_colour(i, 0.8f));
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             ImGui::PushStyleColor(ImGuiCol_Text, node_colour(i));
@@ -109,19 +114,17 @@ void draw_recursion_panel(ViewerState& s) {
                 s.explorer_node = std::int32_t(i);
             ImGui::PopStyleColor();
             if (ImGui::IsItemHovered())
-                draw_box_overlay(*a, n.box, IM_COL32(255, 255, 255, 255), 3);
+                draw_box_overlay(s, *a, n.box, IM_COL32(255, 255, 255, 255), 3);
             ImGui::TableNextColumn();
-            ImGui::Text("%u", n.rays);
+            cell_text("%u", n.rays);
             ImGui::TableNextColumn();
-            ImGui::Text("%u", n.triangles);
+            cell_text("%u", n.triangles);
             ImGui::TableNextColumn();
-            ImGui::TextUnformatted(n.leaf         ? "leaf"
-                                   : n.left_first ? "split, L first"
-                                                  : "split, R first");
+            cell_text("%s", n.leaf ? "leaf" : n.left_first ? "split, L first" : "split, R first");
             ImGui::TableNextColumn();
             if (!n.leaf)
-                ImGui::Text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
-                            n.filter_skipped[1] ? "skip" : "filt");
+                cell_text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
+                          n.filter_skipped[1] ? "skip" : "filt");
         }
         ImGui::EndTable();
     }
@@ -132,7 +135,7 @@ void draw_recursion_panel(ViewerState& s) {
     if (s.explorer_node >= 0 && std::size_t(s.explorer_node) < nodes.size()) {
         const NodeRecord& node = nodes[std::size_t(s.explorer_node)];
         ImGui::Separator();
-        draw_box_overlay(*a, node.box, IM_COL32(255, 255, 255, 255), 2.0f);
+        draw_box_overlay(s, *a, node.box, IM_COL32(255, 255, 255, 255), 2.0f);
         if (node.leaf) {
             ImGui::Text("node %d is a leaf: %u rays x %u triangles, brute force", s.explorer_node,
                         node.rays, node.triangles);
@@ -140,8 +143,8 @@ void draw_recursion_panel(ViewerState& s) {
             candidates_table(s, node);
             const std::int32_t j = s.hovered_candidate >= 0 ? s.hovered_candidate : node.chosen;
             const CandidateSplit& c = node.candidates[std::size_t(j)];
-            draw_box_overlay(*a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);
-            draw_box_overlay(*a, c.right, IM_COL32(255, 150, 40, 255), 2.0f);
+            draw_box_overlay(s, *a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);
+            draw_box_overlay(s, *a, c.right, IM_COL32(255, 150, 40, 255), 2.0f);
         }
         if (node.parent >= 0 && ImGui::Button("parent")) s.explorer_node = node.parent;
         for (int side : {0, 1})
@@ -152,7 +155,6 @@ void draw_recursion_panel(ViewerState& s) {
             }
         if (s.explorer_node >= 0) s.explorer_level = nodes[std::size_t(s.explorer_node)].depth;
     }
-    ImGui::End();
 }
 
 }  // namespace edacrt::app

@@ -1,29 +1,27 @@
-// Traversal debugger: click a pixel to follow its camera ray through the recursion: the nodes
-// it entered, which child went first and whether that was the one holding the final hit,
+// Traversal tab, the debugger: click a pixel to follow its camera ray through the recursion: the
+// nodes it entered, which child went first and whether that was the one holding the final hit,
 // where it was filtered out or passed down unfiltered, and the leaf that produced the hit.
 #include <imgui.h>
 
+#include <algorithm>
 #include <set>
 
-#include "viewer_state.h"
+#include "panels.h"
 
 namespace edacrt::app {
 
-void draw_traversal_panel(ViewerState& s) {
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(720, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(250, 300), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);  // opened when wanted
-    if (!ImGui::Begin("Traversal debugger")) {
-        ImGui::End();
-        return;
-    }
+void draw_traversal_tab(ViewerState& s) {
     ImGui::Checkbox("pick a pixel (click the image)", &s.picking);
     const Analysis* a = s.analysis.get();
     if (!a || a->pixel < 0 || !a->detail) {
         ImGui::TextDisabled(s.analysis_running ? "tracing..." : "no pixel followed yet");
-        ImGui::End();
         return;
+    }
+    if (s.analysis_stale) {
+        ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1),
+                           "stale: followed in another view, scene or parameters; boxes hidden");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("follow again")) s.analysis_requested = true;
     }
     const auto& nodes = a->detail->nodes;
     const auto& visits = a->detail->follow;
@@ -36,7 +34,6 @@ void draw_traversal_panel(ViewerState& s) {
     if (visits.empty()) {
         ImGui::TextDisabled("(%s records no recursion, or the ray missed the scene's box)",
                             std::string(method_name(a->method)).c_str());
-        ImGui::End();
         return;
     }
     // The path to the leaf of the final hit: the last leaf where the hit changed, then up.
@@ -48,8 +45,12 @@ void draw_traversal_panel(ViewerState& s) {
             break;
         }
     int order_misses = 0;
-    if (ImGui::BeginTable("visits", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY,
-                          ImVec2(0, 220))) {
+    if (ImGui::BeginTable("visits", 4,
+                          ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
+                              ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                          ImVec2(0, std::max(ImGui::GetContentRegionAvail().y -
+                                                 ImGui::GetTextLineHeightWithSpacing() - 4.0f,
+                                             120.0f)))) {
         for (const char* h : {"depth", "node", "rays/tris", "what happened"})
             ImGui::TableSetupColumn(h);
         ImGui::TableSetupScrollFreeze(0, 1);
@@ -58,19 +59,19 @@ void draw_traversal_panel(ViewerState& s) {
             if (v.node < 0) continue;
             const NodeRecord& n = nodes[std::size_t(v.node)];
             const bool on_path = hit_path.count(v.node) > 0;
-            draw_box_overlay(*a, n.box,
+            draw_box_overlay(s, *a, n.box,
                              on_path ? IM_COL32(255, 230, 60, 255) : IM_COL32(150, 150, 150, 160),
                              on_path ? 2.0f : 1.0f);
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
-            ImGui::Text("%u", unsigned(v.depth));
+            cell_text("%u", unsigned(v.depth));
             ImGui::TableNextColumn();
-            ImGui::Text("%d%s", v.node, on_path ? " *" : "");
+            cell_text("%d%s", v.node, on_path ? " *" : "");
             ImGui::TableNextColumn();
-            ImGui::Text("%u/%u", n.rays, n.triangles);
+            cell_text("%u/%u", n.rays, n.triangles);
             ImGui::TableNextColumn();
             if (v.leaf) {
-                ImGui::TextUnformatted(v.hit_here ? "leaf: found its hit" : "leaf: nothing closer");
+                cell_text("%s", v.hit_here ? "leaf: found its hit" : "leaf: nothing closer");
                 continue;
             }
             const int first = v.first_side_right ? 1 : 0;
@@ -90,18 +91,17 @@ void draw_traversal_panel(ViewerState& s) {
                 what += std::string("; ") + sides[side] + ": " +
                         (v.passed[side] ? (n.filter_skipped[side] ? "passed unfiltered" : "kept")
                                         : "filtered out");
-            ImGui::TextUnformatted(what.c_str());
+            cell_text("%s", what.c_str());
         }
         ImGui::EndTable();
     }
     ImGui::Text("%zu nodes entered, %d order misses; * = on the path to the hit", visits.size(),
                 order_misses);
     // Mark the pixel.
-    const float sx = display.x / float(a->width), sy = display.y / float(a->height);
-    ImGui::GetBackgroundDrawList()->AddCircle(
-        ImVec2((float(x) + 0.5f) * sx, (float(y) + 0.5f) * sy), 8.0f, IM_COL32(255, 60, 200, 255),
-        0, 2.0f);
-    ImGui::End();
+    if (!s.analysis_stale)
+        ImGui::GetBackgroundDrawList()->AddCircle(
+            image_to_window(s, float(x) + 0.5f, float(y) + 0.5f, a->width, a->height), 8.0f,
+            IM_COL32(255, 60, 200, 255), 0, 2.0f);
 }
 
 }  // namespace edacrt::app

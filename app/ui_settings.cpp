@@ -1,0 +1,80 @@
+// The viewer's settings as the script and tests drive them: `set KEY VALUE`, view names, and
+// whether a recording still describes the render in progress.
+#include <cmath>
+#include <stdexcept>
+
+#include "render/film.h"
+#include "util/error.h"
+#include "viewer_state.h"
+
+namespace edacrt::app {
+
+void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
+    UiSettings& ui = s.ui;
+    EdacrtParams& p = ui.params;
+    const auto number = [&] {
+        try {
+            std::size_t used = 0;
+            const double v = std::stod(value, &used);
+            if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
+            return v;
+        } catch (const std::exception&) {
+            throw InputError("'" + key + "' needs a number, got '" + value + "'");
+        }
+    };
+    if (key == "method")
+        ui.method = parse_method(value);
+    else if (key == "embree-mode")
+        ui.embree_mode = parse_embree_mode(value);
+    else if (key == "integrator")
+        ui.integrator = parse_integrator(value);
+    else if (key == "primary")
+        ui.primary = parse_primary_shading(value);
+    else if (key == "spp")
+        ui.spp_target = int(number());
+    else if (key == "max-depth")
+        ui.max_depth = int(number());
+    else if (key == "ao-samples")
+        ui.ao_samples = int(number());
+    else if (key == "resolution")
+        ui.resolution_scale = float(number());
+    else if (key == "threads")
+        ui.threads = int(number());
+    else if (key == "seed")
+        ui.seed = int(number());
+    else if (key == "pause")
+        ui.paused = number() != 0;
+    else if (key == "preset")
+        p = preset_params(value);
+    else if (const ParamInfo* info = find_param(key))
+        set_param(p, *info, value);
+    else if (key == "exposure") {
+        const auto exposure = float(number());
+        validate_exposure(exposure);
+        s.exposure = exposure;
+    } else if (key == "scene")
+        s.pending_loads.push_back(value);
+    else if (key == "level")
+        s.explorer_level = int(number());
+    else if (key == "node")
+        s.explorer_node = std::int32_t(number());
+    else
+        throw InputError("unknown setting '" + key + "'");
+}
+
+View parse_view(const std::string& name) {
+    if (name == "render") return View::render;
+    if (name == "box") return View::box_tests;
+    if (name == "triangle") return View::triangle_tests;
+    if (name == "depth") return View::depth;
+    if (name == "order") return View::order_misses;
+    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
+}
+
+bool analysis_stale(const Analysis& a, const RenderRequest& r) {
+    return a.scene != r.scene || !(a.camera == r.camera) || a.width != r.settings.width ||
+           a.height != r.settings.height || a.seed != r.settings.seed || a.method != r.method ||
+           !(a.params == r.params);
+}
+
+}  // namespace edacrt::app

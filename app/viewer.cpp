@@ -272,8 +272,9 @@ class ScriptRunner {
             } else if (c.verb == "view") {
                 s.view = parse_view(c.args[0]);
             } else if (c.verb == "tab") {
-                s.select_tab = c.args[0];
-                std::replace(s.select_tab.begin(), s.select_tab.end(), '_', ' ');
+                std::string name = c.args[0];
+                std::replace(name.begin(), name.end(), '_', ' ');
+                s.select_tabs.push_back(name);
             } else if (c.verb == "panels") {
                 s.panels_hidden = choice("hidden", "shown");
             } else if (c.verb == "analysis") {

@@ -95,7 +95,7 @@ struct ViewerState {
     bool panels_hidden = false;  // Tab / F1
     bool analysis_open = true;
     bool show_help = false;  // H / ?
-    std::string select_tab;  // a tab to bring forward (the script's `tab NAME`)
+    std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
     std::vector<PanelPlacement> placements;
     std::vector<std::string> layout_problems;  // of the last frame (the script's check-layout)
 

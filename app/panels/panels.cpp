@@ -7,6 +7,7 @@
 
 #include <cstdarg>
 #include <cstdio>
+#include <string>
 
 namespace edacrt::app {
 namespace {
@@ -30,8 +31,7 @@ void place(ViewerState& s, const char* name) {
 
 /// A tab; the script's `tab NAME` brings it forward.
 bool tab(ViewerState& s, const char* name) {
-    const bool select = s.select_tab == name;
-    if (select) s.select_tab.clear();
+    const bool select = std::erase(s.select_tabs, std::string(name)) > 0;
     return ImGui::BeginTabItem(name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
 }
 

@@ -37,7 +37,9 @@ void draw_scene_tab(ViewerState& s) {
         ImGui::Text("%zu materials", s.scene->materials.size());
         ImGui::TextWrapped("bounds (%.4g, %.4g, %.4g) to (%.4g, %.4g, %.4g)", box.lo.x, box.lo.y,
                            box.lo.z, box.hi.x, box.hi.y, box.hi.z);
-        for (const std::string& w : s.scene->warnings) ImGui::TextDisabled("%s", w.c_str());
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        for (const std::string& w : s.scene->warnings) ImGui::TextWrapped("%s", w.c_str());
+        ImGui::PopStyleColor();
     }
 }
 

@@ -39,18 +39,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The scenes offered in the list: the bundled OBJ files and the built-in scenes.
-std::vector<std::string> scene_list(const std::filesystem::path& assets) {
-    std::vector<std::string> list;
-    std::error_code error;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(assets, error))
-        if (entry.path().extension() == ".obj") list.push_back(entry.path().string());
-    std::sort(list.begin(), list.end());
-    for (const char* builtin : {"builtin:cornell", "builtin:sphere:subdiv=5", "builtin:cube:n=8"})
-        list.emplace_back(builtin);
-    return list;
-}
-
 /// Loads a scene into the state; on failure keeps the previous one and shows the error. The
 /// camera flags override the scene's view (cli/camera_options.h), for the first scene only.
 void load_into(ViewerState& s, const std::string& spec,
@@ -395,7 +383,7 @@ int run_viewer(const ViewerOptions& options) {
     const std::filesystem::path assets = options.assets_dir.empty()
                                              ? std::filesystem::path("assets")
                                              : std::filesystem::path(options.assets_dir);
-    s.scene_list = scene_list(assets);
+    s.scene_list = scene_catalog(assets);
 
     glfwSetErrorCallback([](int code, const char* text) {
         std::cerr << "edacrt_viewer: GLFW error " << code << ": " << text << "\n";

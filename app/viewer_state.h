@@ -11,6 +11,7 @@
 #include "orbit_camera.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
+#include "scene_catalog.h"
 #include "scene/scene.h"
 #include "trace/tracer.h"
 
@@ -68,7 +69,7 @@ struct ViewerState {
     std::string scene_label;
     std::string scene_error;  // the last failed load (the previous scene stays)
     std::string scene_path;   // the path field
-    std::vector<std::string> scene_list;
+    SceneCatalog scene_list;
     Camera scene_camera;  // for "reset view"
     OrbitCamera camera;
 

@@ -70,8 +70,10 @@ void draw_params_tab(ViewerState& s) {
         ImGui::SameLine();
         if (ImGui::SmallButton(std::string(name).c_str())) p = preset_params(name);
     }
-    ImGui::PushItemWidth(-ImGui::CalcTextSize("sample threshold").x -
-                         ImGui::GetStyle().ItemSpacing.x);
+    float label = 0.0f;
+    for (const ParamInfo& info : edacrt_param_info())
+        label = std::max(label, ImGui::CalcTextSize(std::string(info.label).c_str()).x);
+    ImGui::PushItemWidth(-label - ImGui::GetStyle().ItemSpacing.x);
     for (const ParamInfo& info : edacrt_param_info()) widget(p, info);
     ImGui::PopItemWidth();
 }

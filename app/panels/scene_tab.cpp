@@ -10,9 +10,17 @@ void draw_scene_tab(ViewerState& s) {
     ImGui::TextWrapped("%s", s.scene_label.c_str());
     ImGui::SetNextItemWidth(-1.0f);
     if (ImGui::BeginCombo("##scenes", "choose a scene...")) {
-        for (const std::string& name : s.scene_list)
-            if (ImGui::Selectable(name.c_str())) s.pending_loads.push_back(name);
+        for (const CatalogEntry& entry : s.scene_list.entries) {
+            ImGui::BeginDisabled(!entry.present);
+            if (ImGui::Selectable(entry.label.c_str())) s.pending_loads.push_back(entry.path);
+            ImGui::EndDisabled();
+        }
         ImGui::EndCombo();
+    }
+    if (!s.scene_list.hint.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("%s", s.scene_list.hint.c_str());
+        ImGui::PopStyleColor();
     }
     ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load").x -
                             2.0f * ImGui::GetStyle().FramePadding.x -

@@ -45,13 +45,13 @@ void draw_traversal_tab(ViewerState& s) {
             break;
         }
     int order_misses = 0;
-    if (ImGui::BeginTable("visits", 4,
+    if (ImGui::BeginTable("visits", 7,
                           ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, std::max(ImGui::GetContentRegionAvail().y -
                                                  ImGui::GetTextLineHeightWithSpacing() - 4.0f,
                                              120.0f)))) {
-        for (const char* h : {"depth", "node", "rays/tris", "what happened"})
+        for (const char* h : {"depth", "node", "rays/tris", "first", "order", "left", "right"})
             ImGui::TableSetupColumn(h);
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableHeadersRow();
@@ -71,27 +71,30 @@ void draw_traversal_tab(ViewerState& s) {
             cell_text("%u/%u", n.rays, n.triangles);
             ImGui::TableNextColumn();
             if (v.leaf) {
-                cell_text("%s", v.hit_here ? "leaf: found its hit" : "leaf: nothing closer");
+                cell_text("leaf");
+                ImGui::TableNextColumn();
+                cell_text("%s", v.hit_here ? "found its hit" : "nothing closer");
                 continue;
             }
             const int first = v.first_side_right ? 1 : 0;
-            const char* sides[] = {"left", "right"};
-            std::string what = std::string(sides[first]) + " first";
+            cell_text("%s", first ? "right" : "left");
+            ImGui::TableNextColumn();
             if (on_path) {
                 const std::int32_t hit_child =
                     n.children[0] >= 0 && hit_path.count(n.children[0])
                         ? 0
                         : (n.children[1] >= 0 && hit_path.count(n.children[1]) ? 1 : -1);
                 if (hit_child >= 0) {
-                    what += hit_child == first ? " (right choice)" : " (order miss)";
+                    cell_text("%s", hit_child == first ? "right choice" : "order miss");
                     order_misses += hit_child != first;
                 }
             }
-            for (int side : {first, 1 - first})
-                what += std::string("; ") + sides[side] + ": " +
-                        (v.passed[side] ? (n.filter_skipped[side] ? "passed unfiltered" : "kept")
-                                        : "filtered out");
-            cell_text("%s", what.c_str());
+            for (int side : {0, 1}) {
+                ImGui::TableNextColumn();
+                cell_text("%s", v.passed[side]
+                                    ? (n.filter_skipped[side] ? "passed unfiltered" : "kept")
+                                    : "filtered out");
+            }
         }
         ImGui::EndTable();
     }

@@ -58,7 +58,12 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         s.explorer_level = int(number());
     else if (key == "node")
         s.explorer_node = std::int32_t(number());
-    else
+    else if (key == "crop")
+        s.explorer_crop = number() != 0;
+    else if (key == "step") {
+        s.stepping = true;
+        s.step = int(number());
+    } else
         throw InputError("unknown setting '" + key + "'");
 }
 
@@ -69,6 +74,22 @@ View parse_view(const std::string& name) {
     if (name == "depth") return View::depth;
     if (name == "order") return View::order_misses;
     throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
+}
+
+std::vector<float> explorer_tint(const Analysis& a, std::int32_t node, std::int32_t hits_up_to) {
+    std::vector<float> tint(std::size_t(a.width) * std::size_t(a.height), 0.0f);
+    if (!a.detail) return tint;
+    const TraceDetail& d = *a.detail;
+    if (hits_up_to >= 0)
+        for (std::size_t r = 0; r < d.hit_node.size(); ++r)
+            if (d.hit_node[r] >= 0 && d.hit_node[r] <= hits_up_to) tint[a.pixel_of(r)] = 2.0f;
+    if (node >= 0 && std::size_t(node) < d.nodes.size() &&
+        d.nodes[std::size_t(node)].ray_ids >= 0) {
+        const NodeRecord& n = d.nodes[std::size_t(node)];
+        for (std::uint32_t i = 0; i < n.rays; ++i)
+            tint[a.pixel_of(d.node_ray_ids[std::size_t(n.ray_ids) + i])] = 1.0f;
+    }
+    return tint;
 }
 
 bool analysis_stale(const Analysis& a, const RenderRequest& r) {

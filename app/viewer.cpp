@@ -20,6 +20,7 @@
 #include <future>
 #include <iostream>
 #include <optional>
+#include <tuple>
 
 #include "camera_options.h"
 #include "command_line.h"
@@ -155,8 +156,10 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Ca
 }
 
 /// Records the recursion of the first pass's camera rays of the render in progress (the batch
-/// the statistics and heat maps show), following one pixel.
-std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel) {
+/// the statistics and heat maps show), or of a 64x64 crop of them at the image centre (a
+/// small batch to step through), following one pixel.
+std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
+                                        bool crop) {
     auto a = std::make_shared<Analysis>();
     a->scene = request.scene;
     a->camera = request.camera;
@@ -166,16 +169,34 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
     a->method = request.method;
     a->params = request.params;
     a->pixel = pixel;
+    a->crop_w = crop ? std::min(64, a->width) : a->width;
+    a->crop_h = crop ? std::min(64, a->height) : a->height;
+    a->crop_x = (a->width - a->crop_w) / 2;
+    a->crop_y = (a->height - a->crop_h) / 2;
     try {
-        const std::vector<Ray> rays = first_pass_camera_rays(request.camera, request.settings);
+        std::vector<Ray> rays = first_pass_camera_rays(request.camera, request.settings);
+        std::int64_t follow = -1;
+        if (crop) {
+            std::vector<Ray> batch;
+            for (int y = 0; y < a->crop_h; ++y)
+                for (int x = 0; x < a->crop_w; ++x) {
+                    const std::int64_t p = std::int64_t(a->crop_y + y) * a->width + (a->crop_x + x);
+                    if (p == pixel) follow = std::int64_t(batch.size());
+                    batch.push_back(rays[std::size_t(p)]);
+                }
+            rays = std::move(batch);
+        } else {
+            follow = pixel;
+        }
         std::vector<Hit> hits(rays.size());
         auto detail = std::make_shared<TraceDetail>();
         detail->max_nodes = 300'000;
-        detail->follow_ray = pixel;
+        detail->max_node_ray_ids = std::size_t(1) << 24;  // 64 MB
+        detail->follow_ray = follow;
         const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
         tracer->set_scene(*request.scene);
         tracer->trace(rays, hits, Query::closest, detail.get());
-        if (pixel >= 0 && std::size_t(pixel) < hits.size()) a->hit = hits[std::size_t(pixel)];
+        if (follow >= 0) a->hit = hits[std::size_t(follow)];
         a->detail = std::move(detail);
     } catch (const std::exception& e) {
         a->error = e.what();
@@ -432,6 +453,7 @@ int run_viewer(const ViewerOptions& options) {
         std::shared_ptr<const Frame> uploaded, shown_last_frame;
         View uploaded_view = View::render;
         float heat_max = 1.0f;
+        std::tuple<const Analysis*, std::int32_t, int> tint_key{nullptr, -1, -1};
         std::future<std::vector<MethodTotals>> comparison;
         std::future<std::shared_ptr<const Analysis>> analysis;
         auto last = Clock::now();
@@ -494,6 +516,7 @@ int run_viewer(const ViewerOptions& options) {
             }
             s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
             s.placements.clear();
+            s.recursion_shown = false;
             draw_controls(s);
             draw_analysis(s, heat_max);
             draw_help(s);
@@ -540,7 +563,8 @@ int run_viewer(const ViewerOptions& options) {
                 submitted.settings.width > 0) {
                 s.analysis_requested = false;
                 s.analysis_running = true;
-                analysis = std::async(std::launch::async, analyse, submitted, s.follow_pixel);
+                analysis = std::async(std::launch::async, analyse, submitted, s.follow_pixel,
+                                      s.explorer_crop);
             }
             if (analysis.valid() &&
                 analysis.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
@@ -558,6 +582,21 @@ int run_viewer(const ViewerOptions& options) {
                 comparison.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
                 s.comparison = comparison.get();
 
+            // The explorer's tint: the selected node's pixels, and in step-through the hits
+            // found so far; uploaded when any of them changes.
+            const bool tint = s.recursion_shown && s.explorer_tint && s.analysis &&
+                              !s.analysis_stale && s.analysis->detail &&
+                              !s.analysis->detail->nodes.empty();
+            if (tint) {
+                const auto key =
+                    std::tuple(s.analysis.get(), s.explorer_node, s.stepping ? s.step : -1);
+                if (key != tint_key) {
+                    display.upload_tint(
+                        explorer_tint(*s.analysis, s.explorer_node, s.stepping ? s.step : -1),
+                        s.analysis->width, s.analysis->height);
+                    tint_key = key;
+                }
+            }
             const bool heat =
                 s.view != View::render && s.frame && s.frame->detail && uploaded_view == s.view;
             ImGui::Render();
@@ -567,6 +606,7 @@ int run_viewer(const ViewerOptions& options) {
             // The image fills its region (the render has the region's aspect).
             glViewport(region.x, fb_height - region.y - region.h, region.w, region.h);
             if (s.frame) display.draw(heat, {s.exposure, s.tone_map}, heat_max, s.heat_log);
+            if (tint) display.draw_tint();
             glViewport(0, 0, fb_width, fb_height);
 
             // Saving: the image region as shown (overlays are drawn with the UI), or the

@@ -11,8 +11,8 @@
 #include "orbit_camera.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
-#include "scene_catalog.h"
 #include "scene/scene.h"
+#include "scene_catalog.h"
 #include "trace/tracer.h"
 
 namespace edacrt::app {
@@ -56,7 +56,21 @@ struct Analysis {
     std::int64_t pixel = -1;  // the followed pixel (y * width + x), or -1
     Hit hit;                  // its closest hit
     std::string error;
+    // The batch: the camera rays of this crop of the image (all of it, or a small batch to
+    // step through), row by row.
+    int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;
+
+    /// The image pixel (y * width + x) of ray i of the batch.
+    std::size_t pixel_of(std::size_t ray) const {
+        return (std::size_t(crop_y) + ray / std::size_t(crop_w)) * std::size_t(width) +
+               std::size_t(crop_x) + ray % std::size_t(crop_w);
+    }
 };
+
+/// The per-pixel tint of the explorer (Display::upload_tint): 1 where the rays of `node` are,
+/// 2 where a leaf entered no later than node `hits_up_to` found the final hit (-1: none).
+std::vector<float> explorer_tint(const Analysis& analysis, std::int32_t node,
+                                 std::int32_t hits_up_to);
 
 struct ViewerState {
     UiSettings ui;
@@ -95,7 +109,7 @@ struct ViewerState {
     Layout layout;
     bool panels_hidden = false;  // Tab / F1
     bool analysis_open = true;
-    bool show_help = false;  // H / ?
+    bool show_help = false;                // H / ?
     std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
     std::vector<PanelPlacement> placements;
     std::vector<std::string> layout_problems;  // of the last frame (the script's check-layout)
@@ -115,8 +129,13 @@ struct ViewerState {
     int explorer_level = 0;
     std::int32_t explorer_node = -1;  // selected node (its candidate splits are shown)
     std::int32_t hovered_candidate = -1;
-    bool analysis_stale = false;  // recorded for another view, parameters or scene
-    RenderRequest submitted;      // what the render in progress was asked for
+    bool explorer_crop = false;    // record a 64x64 crop at the image centre, not the view
+    bool explorer_tint = true;     // tint the selected node's pixels
+    bool stepping = false;         // step-through: the selected node follows `step`
+    int step = 0;                  // nodes entered so far, in the recursion's order
+    bool recursion_shown = false;  // the Recursion tab was drawn this frame
+    bool analysis_stale = false;   // recorded for another view, parameters or scene
+    RenderRequest submitted;       // what the render in progress was asked for
 };
 
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,

@@ -152,6 +152,30 @@ TEST(Analysis, StaleOnceTheViewSceneSizeSeedMethodOrParametersChange) {
     EXPECT_FALSE(analysis_stale(a, more));
 }
 
+TEST(Analysis, TheTintMarksANodesPixelsAndTheHitsFoundSoFar) {
+    // A 4x3 image, the batch a 2x2 crop at (1, 1): rays 0..3 are pixels 5, 6, 9, 10.
+    auto detail = std::make_shared<TraceDetail>();
+    detail->nodes.resize(3);
+    detail->nodes[1].rays = 2;
+    detail->nodes[1].ray_ids = 0;
+    detail->node_ray_ids = {3, 1};
+    detail->nodes[2].rays = 1;  // no ids recorded (past the budget)
+    detail->hit_node = {2, -1, 1, 1};
+    Analysis a;
+    a.detail = detail;
+    a.width = 4;
+    a.height = 3;
+    a.crop_x = a.crop_y = 1;
+    a.crop_w = a.crop_h = 2;
+    EXPECT_EQ(a.pixel_of(3), 10u);
+    const auto tint = explorer_tint(a, 1, 1);
+    const std::vector<float> expected = {0, 0, 0, 0, 0, 0, 1, 0, 0, 2, 1, 0};
+    EXPECT_EQ(tint, expected) << "node 1's rays over the hits found by node 1";
+    const auto later = explorer_tint(a, -1, 2);
+    EXPECT_EQ(later, (std::vector<float>{0, 0, 0, 0, 0, 2, 0, 0, 0, 2, 2, 0}));
+    EXPECT_EQ(explorer_tint(a, 2, -1), std::vector<float>(12, 0.0f)) << "no ids, no tint";
+}
+
 TEST(Settings, ScriptSettingsReachTheStateAndBadOnesAreRefused) {
     ViewerState s;
     apply_setting(s, "bins", "12");

@@ -60,13 +60,42 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
                            node.filter_skipped[1] ? "passed unfiltered" : "filtered");
 }
 
+/// Step-through: the nodes in the order the recursion entered them (near child first); the
+/// node's rays tinted yellow, the pixels whose hit has been found so far green.
+void step_through(ViewerState& s, const Analysis& a) {
+    const auto& nodes = a.detail->nodes;
+    if (!ImGui::Checkbox("step through the recursion", &s.stepping) && !s.stepping) return;
+    const int last = int(nodes.size()) - 1;
+    s.step = std::clamp(s.step, 0, last);
+    if (ImGui::ArrowButton("##back", ImGuiDir_Left)) s.step = std::max(0, s.step - 1);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##next", ImGuiDir_Right)) s.step = std::min(last, s.step + 1);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(-1.0f);
+    ImGui::SliderInt("##step", &s.step, 0, last, "node %d");
+    const NodeRecord& n = nodes[std::size_t(s.step)];
+    std::size_t found = 0;
+    for (const std::int32_t h : a.detail->hit_node) found += h >= 0 && h <= s.step;
+    ImGui::TextWrapped(
+        "node %d of %zu, depth %u: %u rays x %u triangles, %s; hits found so far: "
+        "%zu of %zu rays (green); this node's rays yellow",
+        s.step, nodes.size(), unsigned(n.depth), n.rays, n.triangles,
+        n.leaf ? "a leaf (brute force)" : "split", found, a.detail->hit_node.size());
+    s.explorer_node = s.step;
+}
+
 }  // namespace
 
 void draw_recursion_tab(ViewerState& s) {
-    if (ImGui::Button(s.analysis_running ? "recording..." : "record this view"))
-        s.analysis_requested = true;
+    s.recursion_shown = true;
+    if (ImGui::Button(s.analysis_running ? "recording..." : "record")) s.analysis_requested = true;
     ImGui::SameLine();
-    ImGui::TextDisabled("the first pass's camera rays (the Statistics tab's batch), nodes kept");
+    if (ImGui::RadioButton("the view's camera rays", !s.explorer_crop)) s.explorer_crop = false;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("a 64x64 crop (to step through)", s.explorer_crop))
+        s.explorer_crop = true;
+    ImGui::SameLine();
+    ImGui::Checkbox("tint pixels", &s.explorer_tint);
     const Analysis* a = s.analysis.get();
     if (!a || !a->error.empty() || !a->detail || a->detail->nodes.empty()) {
         if (a && !a->error.empty())
@@ -82,6 +111,13 @@ void draw_recursion_tab(ViewerState& s) {
         ImGui::SameLine();
         if (ImGui::SmallButton("re-record")) s.analysis_requested = true;
     }
+    ImGui::TextDisabled("recorded: %zu camera rays of the first pass (%s), %zu nodes",
+                        a->detail->rays.size(),
+                        a->crop_w == a->width && a->crop_h == a->height
+                            ? "the whole view, the Statistics tab's batch"
+                            : "a 64x64 crop at the centre, a batch of its own",
+                        a->detail->nodes.size());
+    step_through(s, *a);
     const auto& nodes = a->detail->nodes;
     int deepest = 0;
     for (const NodeRecord& n : nodes) deepest = std::max(deepest, int(n.depth));

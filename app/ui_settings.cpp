@@ -76,6 +76,18 @@ View parse_view(const std::string& name) {
     throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
 }
 
+double relative_rms_change(const Image& a, const Image& b) {
+    double diff = 0.0, norm = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+        const glm::dvec3 d = glm::dvec3(a.pixels[i]) - glm::dvec3(b.pixels[i]);
+        const glm::dvec3 v(b.pixels[i]);
+        if (!std::isfinite(d.x + d.y + d.z + v.x + v.y + v.z)) continue;
+        diff += d.x * d.x + d.y * d.y + d.z * d.z;
+        norm += v.x * v.x + v.y * v.y + v.z * v.z;
+    }
+    return norm > 0.0 ? std::sqrt(diff / norm) : 0.0;
+}
+
 std::vector<float> explorer_tint(const Analysis& a, std::int32_t node, std::int32_t hits_up_to) {
     std::vector<float> tint(std::size_t(a.width) * std::size_t(a.height), 0.0f);
     if (!a.detail) return tint;

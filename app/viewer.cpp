@@ -512,7 +512,15 @@ int run_viewer(const ViewerOptions& options) {
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
-                if (frame->error.empty()) s.frame = frame;
+                if (frame->error.empty() && frame != s.frame) {
+                    if (frame->preview) s.convergence.clear();
+                    if (!frame->preview && s.frame && !s.frame->preview &&
+                        s.frame->request == frame->request && s.frame->spp < frame->spp)
+                        s.convergence.push_back(
+                            {frame->seconds, frame->spp,
+                             relative_rms_change(frame->image, s.frame->image)});
+                    s.frame = frame;
+                }
             }
             s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
             s.placements.clear();

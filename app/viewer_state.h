@@ -67,6 +67,10 @@ struct Analysis {
     }
 };
 
+/// The RMS difference of two images of the same size, relative to the RMS of `b` (0 when b
+/// is black); the change a pass made to the mean.
+double relative_rms_change(const Image& a, const Image& b);
+
 /// The per-pixel tint of the explorer (Display::upload_tint): 1 where the rays of `node` are,
 /// 2 where a leaf entered no later than node `hits_up_to` found the final hit (-1: none).
 std::vector<float> explorer_tint(const Analysis& analysis, std::int32_t node,
@@ -104,6 +108,15 @@ struct ViewerState {
     std::string save_dir = "out";
     std::string save_path;  // empty: save_dir/SCENE-TIME.png
     std::string status;     // one line of feedback (saved, loaded, ...)
+
+    // Convergence of the render in progress: per pass, the RMS change of the mean image from
+    // the previous pass, relative to the image's RMS (restarted with every new request).
+    struct ConvergencePoint {
+        double seconds;
+        int spp;
+        double change;
+    };
+    std::vector<ConvergencePoint> convergence;
 
     // Layout: what the last frame drew where (app/layout.h).
     Layout layout;

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "bookmarks.h"
 #include "command_line.h"
@@ -174,6 +176,18 @@ TEST(Analysis, TheTintMarksANodesPixelsAndTheHitsFoundSoFar) {
     const auto later = explorer_tint(a, -1, 2);
     EXPECT_EQ(later, (std::vector<float>{0, 0, 0, 0, 0, 2, 0, 0, 0, 2, 2, 0}));
     EXPECT_EQ(explorer_tint(a, 2, -1), std::vector<float>(12, 0.0f)) << "no ids, no tint";
+}
+
+TEST(Convergence, RelativeRmsChangeOfAPass) {
+    Image a(2, 1), b(2, 1);
+    b.pixels = {glm::vec3(1.0f), glm::vec3(1.0f)};
+    a.pixels = {glm::vec3(1.0f), glm::vec3(1.5f)};
+    // Difference energy 3 * 0.25, image energy 6: sqrt(0.125).
+    EXPECT_NEAR(relative_rms_change(a, b), std::sqrt(0.125), 1e-12);
+    EXPECT_EQ(relative_rms_change(b, b), 0.0);
+    EXPECT_EQ(relative_rms_change(a, Image(2, 1)), 0.0) << "a black image: no scale";
+    a.pixels[0].x = std::numeric_limits<float>::quiet_NaN();  // skipped, not propagated
+    EXPECT_TRUE(std::isfinite(relative_rms_change(a, b)));
 }
 
 TEST(Settings, ScriptSettingsReachTheStateAndBadOnesAreRefused) {

@@ -4,7 +4,10 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "panels.h"
 
@@ -93,6 +96,22 @@ void draw_render_tab(ViewerState& s) {
         ImGui::Text("%.2f Mrays/s in the tracer (%.0f%%)", mrays,
                     f.seconds > 0 ? 100.0 * f.total.trace_seconds / f.seconds : 0.0);
         ImGui::ProgressBar(float(f.spp) / float(std::max(ui.spp_target, 1)));
+        if (s.convergence.size() >= 2) {
+            // log10 of the change per pass: a straight line of slope -1/2 per decade of
+            // samples is Monte Carlo's 1/sqrt(N).
+            std::vector<float> values;
+            for (const auto& p : s.convergence)
+                values.push_back(float(std::log10(std::max(p.change, 1e-12))));
+            const auto& last = s.convergence.back();
+            char overlay[96];
+            std::snprintf(overlay, sizeof overlay, "%.2e at %d spp, %.1f s", last.change, last.spp,
+                          last.seconds);
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("convergence: log10 of each pass's relative RMS change");
+            ImGui::PopStyleColor();
+            ImGui::PlotLines("##convergence", values.data(), int(values.size()), 0, overlay,
+                             FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 70.0f));
+        }
         if (s.comparing) ImGui::TextDisabled("paused while methods are compared");
     }
 }

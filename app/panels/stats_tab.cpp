@@ -11,12 +11,31 @@
 namespace edacrt::app {
 namespace {
 
-void bars(const char* label, const std::vector<LevelStats>& levels,
-          std::uint64_t LevelStats::*field) {
+/// One bar chart per level of a per-level value.
+void bars(const char* label, const std::vector<LevelStats>& levels, float width,
+          double (*value)(const LevelStats&)) {
     std::vector<float> values;
-    for (const LevelStats& level : levels) values.push_back(float(level.*field));
+    for (const LevelStats& level : levels) values.push_back(float(value(level)));
     ImGui::PlotHistogram(label, values.data(), int(values.size()), 0, nullptr, 0.0f, FLT_MAX,
-                         ImVec2(0, 60));
+                         ImVec2(width, 56));
+}
+
+/// The per-level charts, two to a row: what each level of the recursion spends.
+void level_charts(const std::vector<LevelStats>& levels) {
+    ImGui::TextDisabled("per level, from the root (left) down:");
+    // Two charts and their labels to a row.
+    const float label = ImGui::CalcTextSize("sampling box tests").x + 16.0f;
+    const float width = std::clamp(ImGui::GetContentRegionAvail().x * 0.5f - label, 80.0f, 420.0f);
+    bars("rays in", levels, width, [](const LevelStats& l) { return double(l.rays_in); });
+    ImGui::SameLine();
+    bars("triangle tests", levels, width,
+         [](const LevelStats& l) { return double(l.ray_triangle_tests); });
+    bars("sampling box tests", levels, width,
+         [](const LevelStats& l) { return double(l.sample_box_tests); });
+    ImGui::SameLine();
+    bars("filter box tests", levels, width,
+         [](const LevelStats& l) { return double(l.filter_box_tests); });
+    bars("ms", levels, width, [](const LevelStats& l) { return l.seconds() * 1e3; });
 }
 
 /// Every method on the view's pixel-centre camera rays, the render paused meanwhile.
@@ -148,9 +167,7 @@ void draw_stats_tab(ViewerState& s) {
             }
             ImGui::EndTable();
         }
-        bars("rays in", levels, &LevelStats::rays_in);
-        bars("tri tests", levels, &LevelStats::ray_triangle_tests);
-        bars("box tests", levels, &LevelStats::ray_box_tests);
+        level_charts(levels);
     }
 
     compare_section(s);

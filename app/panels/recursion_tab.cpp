@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "panels.h"
 #include "util/hash_random.h"
@@ -17,7 +18,7 @@ unsigned node_colour(std::size_t node, float alpha = 1.0f) {
     return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, alpha));
 }
 
-void candidates_table(ViewerState& s, const NodeRecord& node) {
+void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams& params) {
     ImGui::Text("node %d: %u rays, %u triangles, split along %c; leaf cost %.1f", s.explorer_node,
                 node.rays, node.triangles, "xyz"[std::max(node.axis, 0)], node.leaf_cost);
     s.hovered_candidate = -1;
@@ -50,14 +51,27 @@ void candidates_table(ViewerState& s, const NodeRecord& node) {
         std::isfinite(c.cost) ? cell_text("%.1f", c.cost) : cell_text("(empty)");
     }
     ImGui::EndTable();
-    ImGui::TextDisabled("cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row");
-    // How good the estimate was: the share of all the node's rays that hit each chosen child.
-    if (node.chosen >= 0)
-        ImGui::TextWrapped("true a_L %.3f, a_R %.3f (all %u rays); %s child first; L %s, R %s",
-                           node.alpha_true[0], node.alpha_true[1], node.rays,
-                           node.left_first ? "left" : "right",
-                           node.filter_skipped[0] ? "passed unfiltered" : "filtered",
-                           node.filter_skipped[1] ? "passed unfiltered" : "filtered");
+    ImGui::TextDisabled(
+        "cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row: its "
+        "two child boxes; the candidate planes are drawn on the image");
+    if (node.chosen < 0) return;
+    // How good the estimate was (the share of all the node's rays that hit each chosen
+    // child), and the filter-skip decision (Section 3.4) it led to.
+    const CandidateSplit& c = node.candidates[std::size_t(node.chosen)];
+    ImGui::Text("%s child first", node.left_first ? "left" : "right");
+    const char* sides[] = {"left", "right"};
+    for (int side : {0, 1}) {
+        const float sampled = side == 0 ? c.alpha_left : c.alpha_right;
+        const std::uint32_t n = side == 0 ? c.left_triangles : c.right_triangles;
+        const float threshold = filter_skip_threshold(params, n);
+        char text[48] = "never (filter skipping off)";
+        if (threshold <= 1.0f) std::snprintf(text, sizeof text, "%.3f", threshold);
+        ImGui::TextWrapped(
+            "%s: a sampled %.3f, true %.3f; skip above 1 - C_bv/(n_child C_child) "
+            "= %s: %s",
+            sides[side], sampled, node.alpha_true[side], text,
+            node.filter_skipped[side] ? "passed unfiltered" : "filtered");
+    }
 }
 
 /// Step-through: the nodes in the order the recursion entered them (near child first); the
@@ -176,7 +190,17 @@ void draw_recursion_tab(ViewerState& s) {
             ImGui::Text("node %d is a leaf: %u rays x %u triangles, brute force", s.explorer_node,
                         node.rays, node.triangles);
         } else {
-            candidates_table(s, node);
+            candidates_table(s, node, a->params);
+            // The K - 1 candidate planes across the node's box, the chosen one brighter.
+            for (std::size_t k = 0; k < node.candidates.size(); ++k) {
+                Aabb plane = node.box;
+                plane.lo[node.axis] = plane.hi[node.axis] = node.candidates[k].plane;
+                const bool chosen = std::int32_t(k) == node.chosen;
+                draw_box_overlay(
+                    s, *a, plane,
+                    chosen ? IM_COL32(255, 255, 255, 220) : IM_COL32(120, 200, 255, 110),
+                    chosen ? 2.0f : 1.0f);
+            }
             const std::int32_t j = s.hovered_candidate >= 0 ? s.hovered_candidate : node.chosen;
             const CandidateSplit& c = node.candidates[std::size_t(j)];
             draw_box_overlay(s, *a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);

@@ -118,6 +118,7 @@ struct CandidateSplit {
     std::uint32_t left_triangles = 0, right_triangles = 0;
     float alpha_left = 0.0f, alpha_right = 0.0f;  // sampled hit ratios (or area ratios)
     float cost = 0.0f;                            // C_T + C_I (a_L N_L + a_R N_R); inf if empty
+    float plane = 0.0f;  // on the node's axis: triangles whose centroid lies below go left
 };
 
 /// One node of a recorded recursion (TraceDetail::max_nodes > 0).

@@ -196,7 +196,10 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
         const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
         tracer->set_scene(*request.scene);
         tracer->trace(rays, hits, Query::closest, detail.get());
-        if (follow >= 0) a->hit = hits[std::size_t(follow)];
+        if (follow >= 0) {
+            a->hit = hits[std::size_t(follow)];
+            a->ray = rays[std::size_t(follow)];
+        }
         a->detail = std::move(detail);
     } catch (const std::exception& e) {
         a->error = e.what();

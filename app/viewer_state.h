@@ -54,6 +54,7 @@ struct Analysis {
     Method method = Method::edacrt;
     EdacrtParams params;
     std::int64_t pixel = -1;  // the followed pixel (y * width + x), or -1
+    Ray ray;                  // its camera ray
     Hit hit;                  // its closest hit
     std::string error;
     // The batch: the camera rays of this crop of the image (all of it, or a small batch to

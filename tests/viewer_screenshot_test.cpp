@@ -188,7 +188,7 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
     // Every tab of both panels, a recording and a followed pixel (the widest tables), the
     // help overlay, the analysis collapsed; check-layout queries ImGui's windows and counts
     // table cells narrower than their text, and fails the script on any problem.
-    std::string script = "wait-spp 1\nrecord\nwait-analysis\n";
+    std::string script = "wait-spp 1\npick 700 200\nwait-analysis\n";
     for (const char* tab : {"Scene", "Camera", "Render", "EDACRT"})
         script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
     for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal"})

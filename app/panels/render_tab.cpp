@@ -36,18 +36,29 @@ constexpr PrimaryShading kShadings[] = {PrimaryShading::eye_light, PrimaryShadin
                                         PrimaryShading::albedo, PrimaryShading::depth};
 constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::single, EmbreeMode::packet8, EmbreeMode::stream};
 
+void tooltip(const char* text) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
 }  // namespace
 
 void draw_render_tab(ViewerState& s) {
     UiSettings& ui = s.ui;
     ImGui::PushItemWidth(-ImGui::CalcTextSize("resolution").x - ImGui::GetStyle().ItemSpacing.x);
     combo("method", ui.method, kMethods, method_name);
+    tooltip(
+        "how rays are traced: edacrt (Nabata 2013), dacrt (Afra 2012), bvh (binned SAH, rebuilt "
+        "per frame), embree, naive (every triangle)");
     if (ui.method == Method::embree)
         combo("embree mode", ui.embree_mode, kEmbreeModes, embree_mode_name);
     combo("integrator", ui.integrator, kIntegrators, integrator_name);
+    tooltip(
+        "primary: camera rays only (debug shading); ao: ambient occlusion; path: path tracing with "
+        "next-event estimation");
     if (ui.integrator == Integrator::primary)
         combo("shading", ui.primary, kShadings, primary_shading_name);
     if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
+    tooltip("path: bounces after the camera ray");
     if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
     ImGui::SliderInt("spp", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per pixel to accumulate");
@@ -60,12 +71,18 @@ void draw_render_tab(ViewerState& s) {
         ImGui::PopStyleColor();
     }
     ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
+    tooltip("worker threads of the renderer and the tracer (0: all cores)");
     ImGui::InputInt("seed", &ui.seed);
+    tooltip(
+        "the sample sequence: the same seed gives the same image for every method and thread "
+        "count");
     ImGui::Checkbox("pause", &ui.paused);
 
     ImGui::Separator();
     ImGui::SliderFloat("exposure", &s.exposure, -8.0f, 8.0f, "%.1f stops");
+    tooltip("display only: radiance times 2^stops before tone mapping");
     ImGui::Combo("tone map", &s.tone_map, "clamp\0Reinhard\0ACES\0");
+    tooltip("display only: how radiance above 1 is compressed");
     ImGui::PopItemWidth();
 
     ImGui::Separator();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <set>
 
+#include "geometry/ray_box.h"
 #include "panels.h"
 
 namespace edacrt::app {
@@ -45,13 +46,15 @@ void draw_traversal_tab(ViewerState& s) {
             break;
         }
     int order_misses = 0;
-    if (ImGui::BeginTable("visits", 7,
+    const SlabRay slab = make_slab_ray(a->ray);
+    if (ImGui::BeginTable("visits", 9,
                           ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, std::max(ImGui::GetContentRegionAvail().y -
                                                  ImGui::GetTextLineHeightWithSpacing() - 4.0f,
                                              120.0f)))) {
-        for (const char* h : {"depth", "node", "rays/tris", "first", "order", "left", "right"})
+        for (const char* h : {"depth", "node", "rays in/out", "tris", "true a_L/a_R", "first",
+                              "order", "left", "right"})
             ImGui::TableSetupColumn(h);
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableHeadersRow();
@@ -68,14 +71,20 @@ void draw_traversal_tab(ViewerState& s) {
             ImGui::TableNextColumn();
             cell_text("%d%s", v.node, on_path ? " *" : "");
             ImGui::TableNextColumn();
-            cell_text("%u/%u", n.rays, n.triangles);
+            v.leaf ? cell_text("%u", n.rays)
+                   : cell_text("%u/%u+%u", n.rays, n.rays_passed[0], n.rays_passed[1]);
+            ImGui::TableNextColumn();
+            cell_text("%u", n.triangles);
             ImGui::TableNextColumn();
             if (v.leaf) {
-                cell_text("leaf");
+                ImGui::TableNextColumn();
+                cell_text("leaf: %u tests", n.triangles);
                 ImGui::TableNextColumn();
                 cell_text("%s", v.hit_here ? "found its hit" : "nothing closer");
                 continue;
             }
+            cell_text("%.2f/%.2f", n.alpha_true[0], n.alpha_true[1]);
+            ImGui::TableNextColumn();
             const int first = v.first_side_right ? 1 : 0;
             cell_text("%s", first ? "right" : "left");
             ImGui::TableNextColumn();
@@ -91,9 +100,17 @@ void draw_traversal_tab(ViewerState& s) {
             }
             for (int side : {0, 1}) {
                 ImGui::TableNextColumn();
-                cell_text("%s", v.passed[side]
-                                    ? (n.filter_skipped[side] ? "passed unfiltered" : "kept")
-                                    : "filtered out");
+                if (v.passed[side]) {
+                    cell_text("%s", n.filter_skipped[side] ? "passed unfiltered" : "kept");
+                    continue;
+                }
+                // Filtered out: it misses the child's box, or meets it only beyond the hit
+                // found so far (culled by distance).
+                const CandidateSplit& c = n.candidates[std::size_t(n.chosen)];
+                float entry = 0.0f;
+                const bool meets =
+                    intersect_box(slab, side == 0 ? c.left : c.right, a->ray.tmax, entry);
+                cell_text("%s", meets ? "culled by distance" : "filtered out (misses)");
             }
         }
         ImGui::EndTable();

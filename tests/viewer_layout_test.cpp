@@ -11,6 +11,7 @@
 #include "command_line.h"
 #include "layout.h"
 #include "scene/builtin_scenes.h"
+#include "script_runner.h"
 #include "util/error.h"
 #include "viewer_state.h"
 
@@ -188,6 +189,31 @@ TEST(Convergence, RelativeRmsChangeOfAPass) {
     EXPECT_EQ(relative_rms_change(a, Image(2, 1)), 0.0) << "a black image: no scale";
     a.pixels[0].x = std::numeric_limits<float>::quiet_NaN();  // skipped, not propagated
     EXPECT_TRUE(std::isfinite(relative_rms_change(a, b)));
+}
+
+TEST(ScriptRunner, StepsChangeTheStateAndCheckLayoutFailsOnAProblem) {
+    ViewerState s;
+    ScriptRunner runner(
+        parse_script("set bins 12\ntab Heat_map\npanels hidden\nanalysis closed\n"
+                     "pick 10 20\ncheck-layout\nquit\n",
+                     "test"));
+    std::string screenshot;
+    bool quit = false;
+    runner.step(s, 0, screenshot, quit);  // a `set` ends the frame's steps
+    EXPECT_EQ(s.ui.params.bins, 12);
+    s.layout_problems = {"Analysis overlaps the image"};
+    EXPECT_THROW(runner.step(s, 0, screenshot, quit), InputError);
+    EXPECT_EQ(s.select_tabs, std::vector<std::string>{"Heat map"});
+    EXPECT_TRUE(s.panels_hidden);
+    EXPECT_FALSE(s.analysis_open);
+    const auto pick = runner.take_pick();
+    ASSERT_TRUE(pick);
+    EXPECT_EQ(pick->x, 10.0f);
+    EXPECT_EQ(pick->y, 20.0f);
+    s.layout_problems.clear();
+    runner.step(s, 0, screenshot, quit);  // the failed check-layout again, now fine
+    EXPECT_TRUE(quit);
+    EXPECT_FALSE(runner.active());
 }
 
 TEST(Settings, ScriptSettingsReachTheStateAndBadOnesAreRefused) {

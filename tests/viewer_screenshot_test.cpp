@@ -129,7 +129,8 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
     // the image region (at 1280x800: x from 351, y to 480).
     std::ofstream(dir / "script.txt")
         << "wait-spp 1\nscreenshot " << shot("plain") << "\ntab Traversal\n"
-        << "pick 815 240\nwait-analysis\nframes 2\nscreenshot " << shot("debugger") << "\n";
+        << "pick 815 240\nwait-analysis\nframes 2\nscreenshot " << shot("debugger")
+        << "\norbit 60 0\nframes 3\nscreenshot " << shot("moved") << "\n";
     const std::string scene = (test::source_dir() / "assets/teapot/teapot.obj").string();
     const auto result = test::run_command(viewer_under_xvfb(
         "--integrator primary --script " + (dir / "script.txt").string() + " " + scene));
@@ -139,6 +140,8 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
     const glm::vec3 yellow(1.0f, 230.0f / 255.0f, 60.0f / 255.0f);
     EXPECT_EQ(near_colour(plain, 0, 0, 1280, 800, yellow), 0.0);
     EXPECT_GT(near_colour(debugger, 0, 0, 1280, 800, yellow), 1e-4);
+    // The camera moved: the recording is stale and its boxes are no longer drawn.
+    EXPECT_EQ(near_colour(read_png(shot("moved")), 0, 0, 1280, 800, yellow), 0.0);
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 

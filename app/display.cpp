@@ -51,11 +51,13 @@ Display::Display() {
     glGenVertexArrays(1, &vertex_array_);  // core profile: a bound VAO even without attributes
     render_texture_ = make_texture();
     heat_texture_ = make_texture();
+    tint_texture_ = make_texture();
 }
 
 Display::~Display() {
     glDeleteTextures(1, &render_texture_);
     glDeleteTextures(1, &heat_texture_);
+    glDeleteTextures(1, &tint_texture_);
     glDeleteVertexArrays(1, &vertex_array_);
     glDeleteProgram(program_);
 }
@@ -70,6 +72,26 @@ void Display::upload_render(const Image& image) {
 void Display::upload_heat(const std::vector<float>& values, int width, int height) {
     glBindTexture(GL_TEXTURE_2D, heat_texture_);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, values.data());
+}
+
+void Display::upload_tint(const std::vector<float>& values, int width, int height) {
+    glBindTexture(GL_TEXTURE_2D, tint_texture_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, width, height, 0, GL_RED, GL_FLOAT, values.data());
+}
+
+void Display::draw_tint() const {
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(program_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tint_texture_);
+    glUniform1i(glGetUniformLocation(program_, "image"), 0);
+    glUniform1i(glGetUniformLocation(program_, "mode"), 2);
+    glBindVertexArray(vertex_array_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDisable(GL_BLEND);
 }
 
 void Display::draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const {

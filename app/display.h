@@ -18,6 +18,8 @@ class Display {
 
     void upload_render(const Image& image);
     void upload_heat(const std::vector<float>& values, int width, int height);
+    /// Per pixel 0 (clear), 1 (a node's rays) or 2 (a hit found): blended over the image.
+    void upload_tint(const std::vector<float>& values, int width, int height);
 
     struct Tone {
         float exposure = 0.0f;
@@ -25,9 +27,11 @@ class Display {
     };
     /// Draws the image over the whole viewport.
     void draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const;
+    void draw_tint() const;
 
   private:
-    GLuint program_ = 0, vertex_array_ = 0, render_texture_ = 0, heat_texture_ = 0;
+    GLuint program_ = 0, vertex_array_ = 0, render_texture_ = 0, heat_texture_ = 0,
+           tint_texture_ = 0;
 };
 
 }  // namespace edacrt::app

@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100000000));
     app.add_option("--screenshot", o.screenshot, "save the window as PNG before quitting");
     app.add_option("--script", o.script, "run UI actions from a file (see app/script.h)");
+    edacrt::cli::add_camera_options(app, o.camera);
+    app.add_flag("--hide-panels", o.hide_panels, "start with the panels hidden (Tab shows them)");
+    app.add_option("--bookmarks", o.bookmarks,
+                   "camera bookmarks file (default: $XDG_CONFIG_HOME/edacrt/bookmarks.json)");
     CLI11_PARSE(app, argc, argv);
     return edacrt::app::run_viewer(o);
 }

@@ -6,7 +6,15 @@
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   frames N           let N frames pass
 //   orbit DX DY        drag the camera by DX, DY pixels
-//   panel NAME open|closed    expand or collapse a panel (NAME with '_' for spaces)
+//   tab NAME           bring a tab forward (NAME with '_' for spaces: Heat_map)
+//   panels hidden|shown       hide all panels (Tab) or show them
+//   analysis open|closed      expand or collapse the analysis area
+//   help on|off        the help overlay
+//   check-layout       fail unless every panel is inside the window, off the image region,
+//                      with no table cell clipped (the last frame's layout)
+//   save-view FILE     save the image region as shown (.png or .jpg)
+//   save-linear FILE   save the render (.exr, .pfm, .hdr linear; .png, .jpg tone-mapped)
+//   write-command FILE write the `edacrt render` command that reproduces the view
 //   record             record the view's recursion (recursion explorer)
 //   pick X Y           follow the camera ray under window position X, Y (traversal debugger)
 //   wait-analysis      until the recording or the followed ray is ready

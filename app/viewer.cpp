@@ -10,21 +10,33 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <iostream>
 #include <optional>
+#include <tuple>
 
+#include "camera_options.h"
+#include "command_line.h"
 #include "display.h"
+#include "panels/panels.h"
+#include "render/default_camera.h"
 #include "render/film.h"
 #include "render/image.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/render_metadata.h"
+#include "render/wavefront.h"
 #include "script.h"
+#include "script_runner.h"
 #include "util/error.h"
+#include "viewer_jobs.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -32,225 +44,22 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The scenes offered in the list: the bundled OBJ files and the built-in scenes.
-std::vector<std::string> scene_list(const std::filesystem::path& assets) {
-    std::vector<std::string> list;
-    std::error_code error;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(assets, error))
-        if (entry.path().extension() == ".obj") list.push_back(entry.path().string());
-    std::sort(list.begin(), list.end());
-    for (const char* builtin : {"builtin:cornell", "builtin:sphere:subdiv=5", "builtin:cube:n=8"})
-        list.emplace_back(builtin);
-    return list;
-}
-
-/// Loads a scene into the state; on failure keeps the previous one and shows the error.
-void load_into(ViewerState& s, const std::string& spec) {
-    try {
-        auto scene = std::make_shared<Scene>(load_scene(spec));
-        if (scene->triangle_count() == 0) throw InputError(spec + ": the scene has no triangles");
-        s.scene_camera = scene->camera.value_or(frame_box(scene->bounds()));
-        s.camera.reset(s.scene_camera);
-        s.scene_label =
-            scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
-        for (const std::string& w : scene->warnings)
-            std::cerr << "edacrt_viewer: warning: " << w << "\n";
-        s.scene = std::move(scene);
-        s.scene_error.clear();
-        s.scene_path = spec;
-    } catch (const std::exception& e) {
-        s.scene_error = e.what();
-    }
-}
-
-RenderRequest make_request(const ViewerState& s, int width, int height) {
-    RenderRequest r;
-    r.scene = s.scene;
-    r.camera = s.camera.camera();
-    r.method = s.ui.method;
-    r.params = s.ui.params;
-    r.embree_mode = s.ui.embree_mode;
-    r.settings.width = std::max(1, int(float(width) * s.ui.resolution_scale));
-    r.settings.height = std::max(1, int(float(height) * s.ui.resolution_scale));
-    r.settings.integrator = s.ui.integrator;
-    r.settings.primary = s.ui.primary;
-    r.settings.max_depth = s.ui.max_depth;
-    r.settings.ao_samples = s.ui.ao_samples;
-    r.settings.seed = std::uint32_t(s.ui.seed);
-    // The first pass renders one sample; once the view is still, passes take several samples
-    // of every pixel as one wavefront (large batches), in wavefronts small enough that a
-    // change cancels within a fraction of a second.
-    r.settings.samples_per_pass = 4;
-    r.settings.wavefront_paths = std::size_t(1) << 18;
-    r.spp_target = s.ui.spp_target;
-    r.threads = s.ui.threads;
-    return r;
-}
-
-// Bytes per pixel the viewer holds besides the renderer: up to three published frames (the
-// worker's newest, the one shown, the one shown before), the first pass's per-ray statistics
-// twice (captured and published), the driver's float texture (RGBA) and the heat map's values
-// and texture; plus the statistics batch, all of a pass's camera rays traced at once
-// (trace_bytes_per_ray(true): rays, hits, the tracer's buffers, the observer's).
-const std::uint64_t kViewerBytesPerPixel = 3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) +
-                                           4 * sizeof(float) + 2 * sizeof(float) +
-                                           trace_bytes_per_ray(true);
-
-/// A new resolution (slider or window size) is taken only if the render fits in memory.
-/// Otherwise the error shows (and is printed once) and the previous resolution stays, the
-/// slider included. Returns false when there is no resolution to render at yet.
-bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest& submitted) {
-    if (request.settings.width == submitted.settings.width &&
-        request.settings.height == submitted.settings.height)
-        return true;
-    try {
-        check_render_memory(request.settings, kViewerBytesPerPixel);
-        s.resolution_error.clear();
-        s.accepted_resolution_scale = s.ui.resolution_scale;
-        return true;
-    } catch (const InputError& e) {
-        if (s.resolution_error != e.what())
-            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
-        s.resolution_error = e.what();
-        s.ui.resolution_scale = s.accepted_resolution_scale;
-        request.settings.width = submitted.settings.width;
-        request.settings.height = submitted.settings.height;
-        return submitted.settings.width > 0;
-    }
-}
-
-/// Traces one camera ray per pixel with every method (for the statistics panel).
-std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
-                                          int width, int height, EdacrtParams params) {
-    const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
-    std::vector<Hit> hits(rays.size());
-    std::vector<MethodTotals> out;
-    for (Method method :
-         {Method::edacrt, Method::dacrt, Method::bvh, Method::embree, Method::naive}) {
-        MethodTotals totals;
-        totals.method = method;
-        try {
-            if (method == Method::naive &&
-                double(rays.size()) * double(scene->triangle_count()) > 5e9)
-                throw InputError("skipped: too slow here");
-            const auto tracer = make_tracer(method, params);
-            tracer->set_scene(*scene);
-            const auto start = Clock::now();
-            totals.stats = tracer->trace(rays, hits, Query::closest);
-            totals.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        } catch (const std::exception& e) {
-            totals.error = e.what();
-        }
-        out.push_back(totals);
-    }
-    return out;
-}
-
-/// Records the recursion of the view's pixel-centre camera rays, following one pixel.
-std::shared_ptr<const Analysis> analyse(std::shared_ptr<const Scene> scene, Camera camera,
-                                        int width, int height, Method method, EdacrtParams params,
-                                        std::int64_t pixel) {
-    auto a = std::make_shared<Analysis>();
-    a->camera = camera;
-    a->width = width;
-    a->height = height;
-    a->method = method;
-    a->pixel = pixel;
-    try {
-        const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
-        std::vector<Hit> hits(rays.size());
-        auto detail = std::make_shared<TraceDetail>();
-        detail->max_nodes = 300'000;
-        detail->follow_ray = pixel;
-        const auto tracer = make_tracer(method, params);
-        tracer->set_scene(*scene);
-        tracer->trace(rays, hits, Query::closest, detail.get());
-        if (pixel >= 0 && std::size_t(pixel) < hits.size()) a->hit = hits[std::size_t(pixel)];
-        a->detail = std::move(detail);
-    } catch (const std::exception& e) {
-        a->error = e.what();
-    }
-    return a;
-}
-
-/// Applies `set KEY VALUE` of a script to the UI settings; throws InputError.
-void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
-    UiSettings& ui = s.ui;
-    EdacrtParams& p = ui.params;
-    const auto number = [&] {
-        try {
-            std::size_t used = 0;
-            const double v = std::stod(value, &used);
-            if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
-            return v;
-        } catch (const std::exception&) {
-            throw InputError("'" + key + "' needs a number, got '" + value + "'");
-        }
-    };
-    if (key == "method")
-        ui.method = parse_method(value);
-    else if (key == "embree-mode")
-        ui.embree_mode = parse_embree_mode(value);
-    else if (key == "integrator")
-        ui.integrator = parse_integrator(value);
-    else if (key == "primary")
-        ui.primary = parse_primary_shading(value);
-    else if (key == "spp")
-        ui.spp_target = int(number());
-    else if (key == "max-depth")
-        ui.max_depth = int(number());
-    else if (key == "ao-samples")
-        ui.ao_samples = int(number());
-    else if (key == "resolution")
-        ui.resolution_scale = float(number());
-    else if (key == "threads")
-        ui.threads = int(number());
-    else if (key == "seed")
-        ui.seed = int(number());
-    else if (key == "pause")
-        ui.paused = number() != 0;
-    else if (key == "preset")
-        p = preset_params(value);
-    else if (const ParamInfo* info = find_param(key))
-        set_param(p, *info, value);
-    else if (key == "exposure") {
-        const auto exposure = float(number());
-        validate_exposure(exposure);
-        s.exposure = exposure;
-    } else if (key == "scene")
-        s.pending_loads.push_back(value);
-    else if (key == "level")
-        s.explorer_level = int(number());
-    else if (key == "node")
-        s.explorer_node = std::int32_t(number());
-    else
-        throw InputError("unknown setting '" + key + "'");
-}
-
-View parse_view(const std::string& name) {
-    if (name == "render") return View::render;
-    if (name == "box") return View::box_tests;
-    if (name == "triangle") return View::triangle_tests;
-    if (name == "depth") return View::depth;
-    if (name == "order") return View::order_misses;
-    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
-}
-
-/// Saves the default framebuffer (what the window shows) as PNG.
-void save_window(const std::string& path, int width, int height) {
+/// Saves a region of the back buffer (what the window shows; x, y from the top-left, in
+/// framebuffer pixels) as PNG or JPEG by the extension, creating the folder.
+void save_framebuffer(const std::string& path, int x, int y, int width, int height,
+                      int framebuffer_height) {
     const std::size_t row = std::size_t(width) * 3;
     std::vector<std::uint8_t> pixels(row * std::size_t(height));
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
+    glReadPixels(x, framebuffer_height - y - height, width, height, GL_RGB, GL_UNSIGNED_BYTE,
+                 pixels.data());
     // OpenGL rows start at the bottom.
     for (std::size_t top = 0, bottom = std::size_t(height) - 1; top < bottom; ++top, --bottom)
         std::swap_ranges(pixels.begin() + std::ptrdiff_t(top * row),
                          pixels.begin() + std::ptrdiff_t((top + 1) * row),
                          pixels.begin() + std::ptrdiff_t(bottom * row));
-    const std::filesystem::path out(path);
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    write_png_rgb8(out, pixels, width, height);
+    save_srgb8(path, pixels, width, height);
 }
 
 /// The shown frame's tone mapping, and what an EXR's header records about it.
@@ -265,81 +74,38 @@ ImageOutput save_settings(const ViewerState& s) {
     return output;
 }
 
-/// Runs the script one step per frame; false when it has ended (or failed: `error` is set).
-class ScriptRunner {
-  public:
-    explicit ScriptRunner(std::vector<ScriptCommand> commands) : commands_(std::move(commands)) {}
+/// Keys (while no text field has the keyboard): Tab or F1 hide the panels, H or ? the help,
+/// F12 saves the image, Esc quits, R resets the view, WASD/QE fly. ImGui 1.86 indexes keys
+/// by the backend's (GLFW's) key codes.
+void handle_keys(ViewerState& s, float dt, bool& quit) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) quit = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) s.save_requested = ViewerState::Save::shown;
+    if (io.WantCaptureKeyboard) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
+        s.panels_hidden = !s.panels_hidden;
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false) ||
+        (ImGui::IsKeyPressed(GLFW_KEY_SLASH, false) && io.KeyShift))
+        s.show_help = !s.show_help;
+    const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
+    const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
+    const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
+    const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
+    if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
+    if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+}
 
-    bool active() const { return next_ < commands_.size(); }
-
-    /// `shown_spp`: samples of the current request on screen (0 while a preview is shown).
-    void step(ViewerState& s, int shown_spp, std::string& screenshot, bool& quit) {
-        while (next_ < commands_.size()) {
-            const ScriptCommand& c = commands_[next_];
-            if (c.verb == "wait-spp") {
-                if (!waiting_) wait_start_ = Clock::now();
-                waiting_ = true;
-                if (shown_spp < std::stoi(c.args[0])) {
-                    if (Clock::now() - wait_start_ > std::chrono::minutes(5))
-                        throw InputError("script line " + std::to_string(c.line) +
-                                         ": timed out waiting for " + c.args[0] + " spp");
-                    return;
-                }
-                waiting_ = false;
-            } else if (c.verb == "frames") {
-                if (frames_left_ < 0) frames_left_ = std::stoi(c.args[0]);
-                if (frames_left_-- > 0) return;
-                frames_left_ = -1;
-            } else if (c.verb == "set" || c.verb == "orbit") {
-                if (c.verb == "set")
-                    apply_setting(s, c.args[0], c.args[1]);
-                else
-                    s.camera.orbit(std::stof(c.args[0]), std::stof(c.args[1]));
-                ++next_;
-                return;  // the next frame submits the change before anything waits on it
-            } else if (c.verb == "view") {
-                s.view = parse_view(c.args[0]);
-            } else if (c.verb == "panel") {
-                std::string name = c.args[0];
-                std::replace(name.begin(), name.end(), '_', ' ');
-                if (c.args[1] != "open" && c.args[1] != "closed")
-                    throw InputError("script line " + std::to_string(c.line) +
-                                     ": panel state is open or closed");
-                s.collapse_panels.emplace_back(name, c.args[1] == "closed");
-            } else if (c.verb == "record") {
-                s.analysis_requested = true;
-                analysis_asked_ = true;
-            } else if (c.verb == "pick") {
-                pick_ = ImVec2(std::stof(c.args[0]), std::stof(c.args[1]));
-                analysis_asked_ = true;
-            } else if (c.verb == "wait-analysis") {
-                if (analysis_asked_ || s.analysis_running || s.analysis_requested) {
-                    analysis_asked_ = s.analysis_running || s.analysis_requested;
-                    return;
-                }
-            } else if (c.verb == "screenshot") {
-                screenshot = c.args[0];
-                ++next_;
-                return;  // taken at the end of this frame
-            } else if (c.verb == "quit") {
-                quit = true;
-            }
-            ++next_;
-        }
-    }
-
-    /// A window position to pick (the traversal debugger), consumed by the viewer.
-    std::optional<ImVec2> take_pick() { return std::exchange(pick_, std::nullopt); }
-
-  private:
-    std::vector<ScriptCommand> commands_;
-    std::optional<ImVec2> pick_;
-    bool analysis_asked_ = false;
-    std::size_t next_ = 0;
-    int frames_left_ = -1;
-    bool waiting_ = false;
-    Clock::time_point wait_start_;
+/// The region in framebuffer pixels: x, y from the top-left, width, height.
+struct PixelRect {
+    int x = 0, y = 0, w = 0, h = 0;
 };
+PixelRect to_pixels(const Rect& r, float scale_x, float scale_y) {
+    const int x0 = int(std::lround(r.x * scale_x)), y0 = int(std::lround(r.y * scale_y));
+    const int x1 = int(std::lround(r.right() * scale_x)),
+              y1 = int(std::lround(r.bottom() * scale_y));
+    return {x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0)};
+}
 
 }  // namespace
 
@@ -355,15 +121,22 @@ int run_viewer(const ViewerOptions& options) {
         std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
         return 1;
     }
-    load_into(s, options.scene);
+    s.panels_hidden = options.hide_panels;
+    load_into(s, options.scene, options.camera);
     if (!s.scene) {
         std::cerr << "edacrt_viewer: error: " << s.scene_error << "\n";
         return 1;
     }
+    s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
+    try {
+        if (!s.bookmarks_path.empty()) s.bookmarks.load(s.bookmarks_path);
+    } catch (const std::exception& e) {
+        std::cerr << "edacrt_viewer: warning: " << e.what() << " (bookmarks start empty)\n";
+    }
     const std::filesystem::path assets = options.assets_dir.empty()
                                              ? std::filesystem::path("assets")
                                              : std::filesystem::path(options.assets_dir);
-    s.scene_list = scene_list(assets);
+    s.scene_list = scene_catalog(assets);
 
     glfwSetErrorCallback([](int code, const char* text) {
         std::cerr << "edacrt_viewer: GLFW error " << code << ": " << text << "\n";
@@ -407,11 +180,12 @@ int run_viewer(const ViewerOptions& options) {
     {
         Display display;
         RenderWorker worker;
-        RenderRequest submitted;
+        RenderRequest& submitted = s.submitted;
         std::uint64_t request_id = 0;
         std::shared_ptr<const Frame> uploaded, shown_last_frame;
         View uploaded_view = View::render;
         float heat_max = 1.0f;
+        std::tuple<const Analysis*, std::int32_t, int> tint_key{nullptr, -1, -1};
         std::future<std::vector<MethodTotals>> comparison;
         std::future<std::shared_ptr<const Analysis>> analysis;
         auto last = Clock::now();
@@ -431,58 +205,73 @@ int run_viewer(const ViewerOptions& options) {
             ImGui_ImplOpenGL3_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();
-            for (const auto& [name, closed] : std::exchange(s.collapse_panels, {}))
-                ImGui::SetWindowCollapsed(name.c_str(), closed);
             const ImGuiIO& io = ImGui::GetIO();
+            s.layout = compute_layout({io.DisplaySize.x, io.DisplaySize.y, ImGui::GetFontSize(),
+                                       ImGui::GetFrameHeight(), s.panels_hidden, s.analysis_open});
+            const Rect& image = s.layout.image;
+            const auto in_image = [&](ImVec2 p) {
+                return p.x >= image.x && p.y >= image.y && p.x < image.right() &&
+                       p.y < image.bottom();
+            };
             // The traversal debugger's pixel: a click on the image while picking, or the script.
-            std::optional<ImVec2> pick = script ? script->take_pick() : std::nullopt;
-            if (s.picking && !io.WantCaptureMouse && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            std::optional<ImVec2> pick;
+            if (const auto p = script ? script->take_pick() : std::nullopt)
+                pick = ImVec2(p->x, p->y);
+            if (s.picking && !io.WantCaptureMouse && in_image(io.MousePos) &&
+                ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                 pick = io.MousePos;
                 s.picking = false;
             }
-            if (pick && submitted.settings.width > 0) {
+            if (pick && submitted.settings.width > 0 && in_image(*pick)) {
                 const int x =
-                    std::clamp(int(pick->x / io.DisplaySize.x * float(submitted.settings.width)), 0,
-                               submitted.settings.width - 1);
-                const int y =
-                    std::clamp(int(pick->y / io.DisplaySize.y * float(submitted.settings.height)),
-                               0, submitted.settings.height - 1);
+                    std::clamp(int((pick->x - image.x) / image.w * float(submitted.settings.width)),
+                               0, submitted.settings.width - 1);
+                const int y = std::clamp(
+                    int((pick->y - image.y) / image.h * float(submitted.settings.height)), 0,
+                    submitted.settings.height - 1);
                 s.follow_pixel = std::int64_t(y) * submitted.settings.width + x;
                 s.analysis_requested = true;
             } else if (!io.WantCaptureMouse) {
+                // Drags that start on the image move the camera.
                 const ImVec2 d = io.MouseDelta;
-                if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
-                if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) ||
-                    ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
-                    s.camera.pan(d.x, d.y, io.DisplaySize.y);
-                if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
+                const auto drag = [&](ImGuiMouseButton b) {
+                    return ImGui::IsMouseDragging(b) && in_image(io.MouseClickedPos[b]);
+                };
+                if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
+                if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
+                    s.camera.pan(d.x, d.y, image.h);
+                if (io.MouseWheel != 0.0f && in_image(io.MousePos)) s.camera.zoom(io.MouseWheel);
             }
-            if (!io.WantCaptureKeyboard) {
-                // ImGui 1.86 indexes keys by the backend's (GLFW's) key codes.
-                const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
-                const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
-                const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
-                const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-                if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
-                if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
-            }
+            handle_keys(s, dt, quit);
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
-                if (frame->error.empty()) s.frame = frame;
+                if (frame->error.empty() && frame != s.frame) {
+                    if (frame->preview) s.convergence.clear();
+                    if (!frame->preview && s.frame && !s.frame->preview &&
+                        s.frame->request == frame->request && s.frame->spp < frame->spp)
+                        s.convergence.push_back(
+                            {frame->seconds, frame->spp,
+                             relative_rms_change(frame->image, s.frame->image)});
+                    s.frame = frame;
+                }
             }
-            draw_render_panel(s);
-            draw_params_panel(s);
-            draw_stats_panel(s);
-            draw_heatmap_panel(s, heat_max);
-            draw_recursion_panel(s);
-            draw_traversal_panel(s);
+            s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
+            s.placements.clear();
+            s.recursion_shown = false;
+            draw_controls(s);
+            draw_analysis(s, heat_max);
+            draw_help(s);
+            draw_heat_readout(s);
 
-            // A changed setting, camera, scene or window size starts a new render.
-            int width = 0, height = 0;
-            glfwGetFramebufferSize(window, &width, &height);
-            if (width > 0 && height > 0) {
-                RenderRequest request = make_request(s, width, height);
+            // A changed setting, camera, scene or image region starts a new render.
+            int fb_width = 0, fb_height = 0;
+            glfwGetFramebufferSize(window, &fb_width, &fb_height);
+            const float scale_x = io.DisplaySize.x > 0 ? float(fb_width) / io.DisplaySize.x : 1.0f;
+            const float scale_y = io.DisplaySize.y > 0 ? float(fb_height) / io.DisplaySize.y : 1.0f;
+            const PixelRect region = to_pixels(image, scale_x, scale_y);
+            if (region.w > 0 && region.h > 0) {
+                RenderRequest request = make_request(s, region.w, region.h);
                 const bool changed = fit_resolution(s, request, submitted) &&
                                      (request_id == 0 || request != submitted);
                 if (changed) {
@@ -491,8 +280,15 @@ int run_viewer(const ViewerOptions& options) {
                     request_id = worker.submit(std::move(request));
                 }
             }
+            s.command_line = render_command_line(
+                {s.scene_path, submitted.method, submitted.embree_mode, submitted.params,
+                 submitted.settings, submitted.camera, submitted.spp_target, s.exposure,
+                 std::array{"clamp", "reinhard", "aces"}[std::size_t(s.tone_map)],
+                 timestamped(s, ".png")});
 
-            worker.set_paused(s.ui.paused);
+            // The render pauses while methods are compared: their timings get the cores.
+            s.comparing = comparison.valid();
+            worker.set_paused(s.ui.paused || s.comparing);
             // Show the newest pass (of the request in force); upload only when it is new.
             if (s.frame && (s.frame != uploaded || s.view != uploaded_view)) {
                 if (s.frame != uploaded) display.upload_render(s.frame->image);
@@ -509,9 +305,8 @@ int run_viewer(const ViewerOptions& options) {
                 submitted.settings.width > 0) {
                 s.analysis_requested = false;
                 s.analysis_running = true;
-                analysis = std::async(std::launch::async, analyse, s.scene, submitted.camera,
-                                      submitted.settings.width, submitted.settings.height,
-                                      s.ui.method, s.ui.params, s.follow_pixel);
+                analysis = std::async(std::launch::async, analyse, submitted, s.follow_pixel,
+                                      s.explorer_crop);
             }
             if (analysis.valid() &&
                 analysis.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
@@ -520,31 +315,74 @@ int run_viewer(const ViewerOptions& options) {
             }
             if (s.compare_requested && !comparison.valid()) {
                 s.compare_requested = false;
-                comparison =
-                    std::async(std::launch::async, compare_methods, s.scene, s.camera.camera(),
-                               submitted.settings.width, submitted.settings.height, s.ui.params);
+                worker.set_paused(true);
+                comparison = std::async(std::launch::async, compare_methods, s.scene,
+                                        submitted.camera, submitted.settings.width,
+                                        submitted.settings.height, s.ui.params, &worker);
             }
             if (comparison.valid() &&
                 comparison.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
                 s.comparison = comparison.get();
-            if (s.save_requested && s.frame) {
-                s.save_requested = false;
-                try {
-                    save_image(s.save_path, s.frame->image, save_settings(s));
-                    s.status = "saved " + s.save_path;
-                } catch (const std::exception& e) {
-                    s.status = e.what();
+
+            // The explorer's tint: the selected node's pixels, and in step-through the hits
+            // found so far; uploaded when any of them changes.
+            const bool tint = s.recursion_shown && s.explorer_tint && s.analysis &&
+                              !s.analysis_stale && s.analysis->detail &&
+                              !s.analysis->detail->nodes.empty();
+            if (tint) {
+                const auto key =
+                    std::tuple(s.analysis.get(), s.explorer_node, s.stepping ? s.step : -1);
+                if (key != tint_key) {
+                    display.upload_tint(
+                        explorer_tint(*s.analysis, s.explorer_node, s.stepping ? s.step : -1),
+                        s.analysis->width, s.analysis->height);
+                    tint_key = key;
                 }
             }
-
             const bool heat =
                 s.view != View::render && s.frame && s.frame->detail && uploaded_view == s.view;
             ImGui::Render();
-            glViewport(0, 0, width, height);
+            glViewport(0, 0, fb_width, fb_height);
             glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
             glClear(GL_COLOR_BUFFER_BIT);
+            // The image fills its region (the render has the region's aspect).
+            glViewport(region.x, fb_height - region.y - region.h, region.w, region.h);
             if (s.frame) display.draw(heat, {s.exposure, s.tone_map}, heat_max, s.heat_log);
+            if (tint) display.draw_tint();
+            glViewport(0, 0, fb_width, fb_height);
+
+            // Saving: the image region as shown (overlays are drawn with the UI), or the
+            // linear render.
+            const auto save_shown = [&] {
+                const std::string path = s.save_path.empty() ? timestamped(s, ".png") : s.save_path;
+                save_framebuffer(path, region.x, region.y, region.w, region.h, fb_height);
+                s.status = "saved " + path;
+                std::cout << "saved " << path << "\n";
+            };
+            const auto save = std::exchange(s.save_requested, ViewerState::Save::none);
+            try {
+                if (save == ViewerState::Save::shown && !s.save_overlays) save_shown();
+                if (save == ViewerState::Save::linear && s.frame) {
+                    const std::string path =
+                        s.save_path.empty() ? timestamped(s, ".exr") : s.save_path;
+                    save_image(path, s.frame->image, save_settings(s));
+                    s.status = "saved " + path;
+                    std::cout << "saved " << path << "\n";
+                }
+            } catch (const std::exception& e) {
+                s.status = e.what();
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            }
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+            try {
+                if (save == ViewerState::Save::shown && s.save_overlays) save_shown();
+            } catch (const std::exception& e) {
+                s.status = e.what();
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            }
+            if (save != ViewerState::Save::none) s.save_path.clear();
+            s.layout_problems =
+                layout_problems(s.layout, io.DisplaySize.x, io.DisplaySize.y, s.placements);
 
             ++frame_number;
             std::string screenshot;
@@ -566,9 +404,11 @@ int run_viewer(const ViewerOptions& options) {
                     quit = true;
                 }
                 if (!screenshot.empty()) {
-                    save_window(screenshot, width, height);
-                    std::cout << "screenshot " << screenshot << " (" << width << "x" << height
-                              << ", " << shown_spp << " spp, frame " << frame_number << ")\n";
+                    save_framebuffer(screenshot, 0, 0, fb_width, fb_height, fb_height);
+                    std::cout << "screenshot " << screenshot << " (" << fb_width << "x" << fb_height
+                              << ", " << shown_spp << " spp, frame " << frame_number
+                              << ", image region " << region.x << " " << region.y << " " << region.w
+                              << " " << region.h << ")\n";
                 }
             } catch (const std::exception& e) {
                 std::cerr << "edacrt_viewer: error: " << e.what() << "\n";

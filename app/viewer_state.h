@@ -5,11 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "bookmarks.h"
 #include "heatmap.h"
+#include "layout.h"
 #include "orbit_camera.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
 #include "scene/scene.h"
+#include "scene_catalog.h"
 #include "trace/tracer.h"
 
 namespace edacrt::app {
@@ -39,17 +42,40 @@ struct MethodTotals {
     std::string error;
 };
 
-/// A recorded trace of the current view's pixel-centre camera rays: the recursion's nodes and
-/// (for the traversal debugger) one pixel's path. Computed off the UI thread on request.
+/// A recorded trace of the first pass's camera rays (the batch the statistics and heat maps
+/// show): the recursion's nodes and (for the traversal debugger) one pixel's path. Computed off
+/// the UI thread on request.
 struct Analysis {
     std::shared_ptr<const TraceDetail> detail;
+    std::shared_ptr<const Scene> scene;
     Camera camera;
     int width = 0, height = 0;  // of the traced image
+    std::uint32_t seed = 0;
     Method method = Method::edacrt;
+    EdacrtParams params;
     std::int64_t pixel = -1;  // the followed pixel (y * width + x), or -1
+    Ray ray;                  // its camera ray
     Hit hit;                  // its closest hit
     std::string error;
+    // The batch: the camera rays of this crop of the image (all of it, or a small batch to
+    // step through), row by row.
+    int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;
+
+    /// The image pixel (y * width + x) of ray i of the batch.
+    std::size_t pixel_of(std::size_t ray) const {
+        return (std::size_t(crop_y) + ray / std::size_t(crop_w)) * std::size_t(width) +
+               std::size_t(crop_x) + ray % std::size_t(crop_w);
+    }
 };
+
+/// The RMS difference of two images of the same size, relative to the RMS of `b` (0 when b
+/// is black); the change a pass made to the mean.
+double relative_rms_change(const Image& a, const Image& b);
+
+/// The per-pixel tint of the explorer (Display::upload_tint): 1 where the rays of `node` are,
+/// 2 where a leaf entered no later than node `hits_up_to` found the final hit (-1: none).
+std::vector<float> explorer_tint(const Analysis& analysis, std::int32_t node,
+                                 std::int32_t hits_up_to);
 
 struct ViewerState {
     UiSettings ui;
@@ -62,7 +88,7 @@ struct ViewerState {
     std::string scene_label;
     std::string scene_error;  // the last failed load (the previous scene stays)
     std::string scene_path;   // the path field
-    std::vector<std::string> scene_list;
+    SceneCatalog scene_list;
     Camera scene_camera;  // for "reset view"
     OrbitCamera camera;
 
@@ -71,11 +97,42 @@ struct ViewerState {
     std::string resolution_error;            // the last resolution refused (too much memory)
     float accepted_resolution_scale = 1.0f;  // the slider returns here after a refusal
     std::vector<MethodTotals> comparison;
+    bool comparing = false;                  // the render pauses meanwhile
     std::vector<std::string> pending_loads;  // from the path field, the list, drops
     bool compare_requested = false;
-    bool save_requested = false;
-    std::string save_path = "out/viewer.png";
-    std::string status;  // one line of feedback (saved, loaded, ...)
+
+    // Saving: PNG of the image region as shown (with or without overlays), PFM of the linear
+    // render; the name from the scene and the time unless a path is given.
+    enum class Save { none, shown, linear };
+    Save save_requested = Save::none;
+    bool save_overlays = true;
+    std::string save_dir = "out";
+    std::string save_path;  // empty: save_dir/SCENE-TIME.png
+    std::string status;     // one line of feedback (saved, loaded, ...)
+
+    // Convergence of the render in progress: per pass, the RMS change of the mean image from
+    // the previous pass, relative to the image's RMS (restarted with every new request).
+    struct ConvergencePoint {
+        double seconds;
+        int spp;
+        double change;
+    };
+    std::vector<ConvergencePoint> convergence;
+
+    // Layout: what the last frame drew where (app/layout.h).
+    Layout layout;
+    bool panels_hidden = false;  // Tab / F1
+    bool analysis_open = true;
+    bool show_help = false;                // H / ?
+    std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
+    std::vector<PanelPlacement> placements;
+    std::vector<std::string> layout_problems;  // of the last frame (the script's check-layout)
+
+    // Camera panel.
+    Bookmarks bookmarks;
+    std::string bookmarks_path;
+    std::string bookmark_name;
+    std::string command_line;  // the `edacrt render` command of the view
 
     // Recursion explorer and traversal debugger.
     std::shared_ptr<const Analysis> analysis;
@@ -86,19 +143,24 @@ struct ViewerState {
     int explorer_level = 0;
     std::int32_t explorer_node = -1;  // selected node (its candidate splits are shown)
     std::int32_t hovered_candidate = -1;
-    std::vector<std::pair<std::string, bool>> collapse_panels;  // from the script: name, closed
+    bool explorer_crop = false;    // record a 64x64 crop at the image centre, not the view
+    bool explorer_tint = true;     // tint the selected node's pixels
+    bool stepping = false;         // step-through: the selected node follows `step`
+    int step = 0;                  // nodes entered so far, in the recursion's order
+    bool recursion_shown = false;  // the Recursion tab was drawn this frame
+    bool analysis_stale = false;   // recorded for another view, parameters or scene
+    RenderRequest submitted;       // what the render in progress was asked for
 };
 
-// The panels, one file each under panels/.
-void draw_render_panel(ViewerState& state);
-void draw_params_panel(ViewerState& state);
-void draw_stats_panel(ViewerState& state);
-void draw_heatmap_panel(ViewerState& state, float heat_max);
-void draw_recursion_panel(ViewerState& state);
-void draw_traversal_panel(ViewerState& state);
+/// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
+/// exposure, scene, explorer level and node). Throws InputError.
+void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
 
-/// Draws a box's projected edges over the image (background draw list).
-void draw_box_overlay(const Analysis& analysis, const Aabb& box, unsigned colour,
-                      float thickness = 1.0f);
+/// render | box | triangle | depth | order. Throws InputError.
+View parse_view(const std::string& name);
+
+/// True when the recording was made for another scene, view, size, seed, method or parameters
+/// than the render in progress.
+bool analysis_stale(const Analysis& analysis, const RenderRequest& submitted);
 
 }  // namespace edacrt::app

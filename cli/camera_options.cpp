@@ -1,5 +1,7 @@
 #include "camera_options.h"
 
+#include "render/default_camera.h"
+
 namespace edacrt::cli {
 namespace {
 
@@ -11,7 +13,9 @@ void add_camera_options(CLI::App& command, CameraOptions& o) {
     const auto vec3_option = [&](const char* name, std::vector<float>& target, const char* what) {
         command.add_option(name, target, what)->expected(3)->delimiter(',');
     };
-    vec3_option("--eye", o.eye, "camera position X,Y,Z (default: frames the scene from +z)");
+    vec3_option("--eye", o.eye,
+                "camera position X,Y,Z (default: the scene's own camera; else inside an interior, "
+                "near the middle of the floor; else framing the scene from +z)");
     vec3_option("--look-at", o.look_at, "point the camera looks at X,Y,Z");
     vec3_option("--up", o.up, "camera up vector X,Y,Z");
     command.add_option("--fov", o.fov, "vertical field of view in degrees");
@@ -27,7 +31,7 @@ void add_image_size_options(CLI::App& command, int& width, int& height) {
 }
 
 Camera choose_camera(const Scene& scene, const CameraOptions& o) {
-    Camera camera = scene.camera.value_or(frame_box(scene.bounds()));
+    Camera camera = default_camera(scene);
     if (!o.eye.empty()) camera.eye = to_vec3(o.eye);
     if (!o.look_at.empty()) camera.look_at = to_vec3(o.look_at);
     if (!o.up.empty()) camera.up = to_vec3(o.up);

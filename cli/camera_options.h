@@ -18,7 +18,7 @@ void add_camera_options(CLI::App& command, CameraOptions& options);
 /// --width and --height of the image, in pixels (1 to 16384).
 void add_image_size_options(CLI::App& command, int& width, int& height);
 
-/// The scene's own camera, else one that frames the scene; overridden flag by flag.
+/// default_camera(scene), overridden flag by flag.
 /// Throws InputError for an invalid result.
 Camera choose_camera(const Scene& scene, const CameraOptions& options);
 

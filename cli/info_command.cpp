@@ -6,6 +6,7 @@
 
 #include "camera_options.h"
 #include "commands.h"
+#include "render/default_camera.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
@@ -53,8 +54,12 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
                              {"textures", textures}});
     }
     const Camera camera = choose_camera(scene, o.camera);
-    const bool own = scene.camera && camera == *scene.camera;
-    const bool framed = !scene.camera && camera == frame_box(s.bounds);
+    const bool given =
+        !o.camera.eye.empty() || !o.camera.look_at.empty() || !o.camera.up.empty() || o.camera.fov;
+    const std::string from = given                ? "the camera options"
+                             : scene.camera       ? "the scene"
+                             : is_interior(scene) ? "inside the interior, above the floor"
+                                                  : "framing the bounds from +z";
 
     RenderSettings settings = o.settings;
     settings.integrator = parse_integrator(o.integrator);
@@ -81,9 +86,7 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
               {"max", vec(s.bounds.hi)},
               {"diagonal", glm::length(s.bounds.hi - s.bounds.lo)}}},
             {"camera",
-             {{"from", own      ? "the scene"
-                       : framed ? "framing the bounds from +z"
-                                : "the camera options"},
+             {{"from", from},
               {"eye", vec(camera.eye)},
               {"look_at", vec(camera.look_at)},
               {"up", vec(camera.up)},

@@ -5,7 +5,7 @@ in vec2 uv;
 out vec4 colour;
 
 uniform sampler2D image;   // RGB radiance, or the count in R
-uniform int mode;          // 0: render, 1: heat map
+uniform int mode;          // 0: render, 1: heat map, 2: tint (drawn blended over the image)
 uniform float exposure;    // stops
 uniform int tone_map;      // 0: clamp, 1: Reinhard, 2: ACES (Narkowicz)
 uniform float heat_max;
@@ -31,6 +31,12 @@ vec3 to_srgb(vec3 c) {
 }
 
 void main() {
+    if (mode == 2) {  // the explorer's tint: 1 a node's rays (yellow), 2 hits found (green)
+        float v = texture(image, uv).r;
+        colour = v > 1.5 ? vec4(0.2, 0.9, 0.35, 0.5) : v > 0.5 ? vec4(1.0, 0.85, 0.1, 0.45)
+                                                                : vec4(0.0);
+        return;
+    }
     if (mode == 1) {
         float v = texture(image, uv).r;
         float t = heat_log != 0 ? log(1.0 + v) / log(1.0 + max(heat_max, 1e-6))

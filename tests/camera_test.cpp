@@ -4,7 +4,10 @@
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <iostream>
 
+#include "render/default_camera.h"
+#include "test_paths.h"
 #include "util/error.h"
 
 namespace edacrt {
@@ -64,6 +67,56 @@ TEST(Camera, PixelIsTheInverseOfRay) {
         EXPECT_NEAR(back->y, p.y, 1e-3f);
     }
     EXPECT_FALSE(projection.pixel(camera.eye - (camera.look_at - camera.eye)));  // behind
+}
+
+}  // namespace
+}  // namespace edacrt
+
+namespace edacrt {
+namespace {
+
+bool inside(const Aabb& box, const glm::vec3& p) {
+    return p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
+           p.y <= box.hi.y && p.z <= box.hi.z;
+}
+
+TEST(DefaultCamera, ObjectsAreFramedFromOutsideInteriorsSeenFromInside) {
+    // Bundled objects, and the open Cornell box (its front is missing: not enclosed).
+    for (const char* path : {"assets/cornell-box/CornellBox-Original.obj",
+                             "assets/teapot/teapot.obj", "assets/spot/spot.obj"}) {
+        const Scene scene = load_scene((test::source_dir() / path).string());
+        EXPECT_FALSE(is_interior(scene)) << path;
+        EXPECT_EQ(default_camera(scene), frame_box(scene.bounds())) << path;
+    }
+    // A scene's own camera wins.
+    const Scene cornell = load_scene("builtin:cornell");
+    EXPECT_EQ(default_camera(cornell), *cornell.camera);
+    // A closed cube seen from its centre: inside faces point inwards.
+    Scene box = load_scene("builtin:cube:n=1");
+    EXPECT_FALSE(is_interior(box)) << "the outside of a closed cube faces away from its centre";
+    for (auto& tri : box.triangles) std::swap(tri[1], tri[2]);  // turned inside out: a room
+    EXPECT_TRUE(is_interior(box));
+    const Camera room = default_camera(box);
+    EXPECT_TRUE(inside(box.bounds(), room.eye));
+    validate(room);
+
+    for (const auto& [file, interior] :
+         {std::pair{"sponza/sponza.obj", true}, std::pair{"sibenik/sibenik.obj", true},
+          std::pair{"conference/conference.obj", true},
+          std::pair{"bunny/stanford-bunny.obj", false},
+          std::pair{"dragon/dragon_vrip_res3.obj", false}, std::pair{"buddha/buddha.obj", false}}) {
+        if (const std::string why = test::missing_scene(file); !why.empty()) {
+            std::cout << "skipped " << file << ": " << why << "\n";
+            continue;
+        }
+        const Scene scene = load_scene((test::scenes_dir() / file).string());
+        EXPECT_EQ(is_interior(scene), interior) << file;
+        const Camera camera = default_camera(scene);
+        validate(camera);
+        if (interior) {
+            EXPECT_TRUE(inside(scene.bounds(), camera.eye)) << file;
+        }
+    }
 }
 
 }  // namespace

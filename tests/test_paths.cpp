@@ -24,7 +24,7 @@ std::string missing_scene(const std::filesystem::path& relative) {
     const std::string why =
         path.string() + (have_scenes ? " is missing or unreadable" : " not found") +
         " (large scenes are looked up in $EDACRT_SCENES, else ../shared/scenes beside the "
-        "repository)";
+        "repository; scripts/get-scenes fetches them)";
     const char* ci = std::getenv("CI");
     if (have_scenes && ci && std::string_view(ci) == "true") ADD_FAILURE() << why;
     return why;

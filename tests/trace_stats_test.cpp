@@ -2,6 +2,7 @@
 // collecting them does not change a single hit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -133,6 +134,55 @@ TEST(TraceStats, NaiveAndBvhFillPerRayCounts) {
     for (const Method method : {Method::naive, Method::bvh}) {
         const auto tracer = make_tracer(method);
         expect_consistent(*tracer, scene, Query::closest, std::string(method_name(method)));
+    }
+}
+
+TEST(TraceStats, RecordedNodeRaysAndHitLeavesTellTheStepThroughStory) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=4");
+    const std::vector<Ray> rays = camera_and_random_rays(scene);
+    for (const std::size_t budget : {std::size_t(1) << 24, std::size_t(5000)}) {
+        SCOPED_TRACE(budget);
+        EdacrtTracer tracer;
+        tracer.set_scene(scene);
+        std::vector<Hit> hits(rays.size());
+        TraceDetail detail;
+        detail.max_nodes = 1'000'000;
+        detail.max_node_ray_ids = budget;
+        tracer.trace(rays, hits, Query::closest, &detail);
+        ASSERT_FALSE(detail.nodes.empty());
+        EXPECT_LE(detail.node_ray_ids.size(), budget);
+        // Each node's ids: its own count, distinct, and a subset of its parent's.
+        std::size_t with_ids = 0;
+        for (const NodeRecord& n : detail.nodes) {
+            if (n.ray_ids < 0) continue;
+            ++with_ids;
+            const auto begin = detail.node_ray_ids.begin() + n.ray_ids;
+            std::vector<std::uint32_t> ids(begin, begin + n.rays);
+            std::sort(ids.begin(), ids.end());
+            EXPECT_EQ(std::adjacent_find(ids.begin(), ids.end()), ids.end());
+            if (n.parent < 0) continue;
+            const NodeRecord& p = detail.nodes[std::size_t(n.parent)];
+            if (p.ray_ids < 0) continue;
+            std::vector<std::uint32_t> parent(detail.node_ray_ids.begin() + p.ray_ids,
+                                              detail.node_ray_ids.begin() + p.ray_ids + p.rays);
+            std::sort(parent.begin(), parent.end());
+            EXPECT_TRUE(std::includes(parent.begin(), parent.end(), ids.begin(), ids.end()));
+        }
+        EXPECT_GT(with_ids, 0u);
+        if (budget > 1'000'000) {
+            EXPECT_EQ(with_ids, detail.nodes.size());
+        }
+        // hit_node: exactly the rays that hit, each at a recorded leaf that holds the ray.
+        ASSERT_EQ(detail.hit_node.size(), rays.size());
+        for (std::size_t r = 0; r < rays.size(); ++r) {
+            EXPECT_EQ(detail.hit_node[r] >= 0, hits[r].hit()) << r;
+            if (detail.hit_node[r] < 0) continue;
+            const NodeRecord& leaf = detail.nodes[std::size_t(detail.hit_node[r])];
+            EXPECT_TRUE(leaf.leaf);
+            if (leaf.ray_ids < 0) continue;
+            const auto begin = detail.node_ray_ids.begin() + leaf.ray_ids;
+            EXPECT_NE(std::find(begin, begin + leaf.rays, std::uint32_t(r)), begin + leaf.rays);
+        }
     }
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli_runner.h"
+#include "render/exr_image.h"
 #include "render/image.h"
 #include "test_paths.h"
 
@@ -55,15 +57,18 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
         std::filesystem::temp_directory_path() / ("edacrt_viewer_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
+    // The panels hidden: the image fills the window (the layout is tested below).
     std::ofstream(dir / "script.txt")
-        << "wait-spp 4\nscreenshot " << shot("render") << "\nview box\nframes 2\nscreenshot "
-        << shot("box") << "\nview triangle\nframes 2\nscreenshot " << shot("triangle")
+        << "panels hidden\nwait-spp 4\nscreenshot " << shot("render")
+        << "\nview box\nframes 2\nscreenshot " << shot("box")
+        << "\nview triangle\nframes 2\nscreenshot " << shot("triangle")
         << "\nview depth\nframes 2\nscreenshot " << shot("depth")
         << "\nview order\nframes 2\nscreenshot " << shot("order")
         << "\nview render\nset method bvh\nset bins 16\n"
            "set integrator ao\nwait-spp 2\nscreenshot "
         << shot("changed") << "\nset scene /no/such/scene.obj\nframes 2\nwait-spp 3\nscreenshot "
-        << shot("after_bad_scene") << "\n";
+        << shot("after_bad_scene") << "\npanels shown\nframes 3\ncheck-layout\nscreenshot "
+        << shot("panels") << "\n";
     const std::string scene =
         (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string();
     const auto result = test::run_command(
@@ -79,8 +84,8 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
     EXPECT_GT(left.x, 2.0f * left.y) << "red wall";
     EXPECT_GT(right.y, 1.5f * right.x) << "green wall";
     EXPECT_GT(mean(render, 560, 220, 720, 300).x, 0.02f) << "back wall lit";
-    // The panels: the render panel's widgets (blue frames, white text) at the top left.
-    const glm::vec3 widgets = mean(render, 18, 100, 230, 240);
+    // The panels: the scene tab's widgets (blue frames, white text) at the top left.
+    const glm::vec3 widgets = mean(read_png(shot("panels")), 8, 60, 300, 110);
     EXPECT_GT(widgets.z, 1.5f * widgets.x) << "ImGui widgets";
     EXPECT_GT(widgets.z, 0.05f) << "ImGui widgets";
 
@@ -122,10 +127,12 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
                      ("edacrt_viewer_debug_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
-    // The teapot: enough triangles for a few levels. The debugger follows the middle pixel.
+    // The teapot: enough triangles for a few levels. The debugger follows the middle pixel of
+    // the image region (at 1280x800: x from 351, y to 480).
     std::ofstream(dir / "script.txt")
-        << "wait-spp 1\nscreenshot " << shot("plain") << "\npanel Traversal_debugger open\n"
-        << "pick 640 400\nwait-analysis\nframes 2\nscreenshot " << shot("debugger") << "\n";
+        << "wait-spp 1\nscreenshot " << shot("plain") << "\ntab Traversal\n"
+        << "pick 815 240\nwait-analysis\nframes 2\nscreenshot " << shot("debugger")
+        << "\norbit 60 0\nframes 3\nscreenshot " << shot("moved") << "\n";
     const std::string scene = (test::source_dir() / "assets/teapot/teapot.obj").string();
     const auto result = test::run_command(viewer_under_xvfb(
         "--integrator primary --script " + (dir / "script.txt").string() + " " + scene));
@@ -135,6 +142,8 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
     const glm::vec3 yellow(1.0f, 230.0f / 255.0f, 60.0f / 255.0f);
     EXPECT_EQ(near_colour(plain, 0, 0, 1280, 800, yellow), 0.0);
     EXPECT_GT(near_colour(debugger, 0, 0, 1280, 800, yellow), 1e-4);
+    // The camera moved: the recording is stale and its boxes are no longer drawn.
+    EXPECT_EQ(near_colour(read_png(shot("moved")), 0, 0, 1280, 800, yellow), 0.0);
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
@@ -147,9 +156,10 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
     // at full resolution is refused; after the refused change the render goes on at half.
     std::ofstream(dir / "script.txt")
         << "set resolution 0.5\nwait-spp 1\nset resolution 1\nframes 2\nwait-spp 3\nquit\n";
-    const auto result = test::run_command(
-        "EDACRT_MEMORY_LIMIT=200000000 " +
-        viewer_under_xvfb("--script " + (dir / "script.txt").string() + " builtin:cornell"));
+    const auto result =
+        test::run_command("EDACRT_MEMORY_LIMIT=200000000 " +
+                          viewer_under_xvfb("--hide-panels --script " +
+                                            (dir / "script.txt").string() + " builtin:cornell"));
     std::filesystem::remove_all(dir);
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const std::string refusal = "edacrt_viewer: error: a 1280x800 path render needs about ";
@@ -162,6 +172,95 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
         << result.output;
     EXPECT_NE(result.output.find(refusal, first + 1), std::string::npos) << "refused twice";
     EXPECT_EQ(result.output.find("640x400 path render needs"), std::string::npos);
+}
+
+/// Runs a script in the viewer at a window size; returns the output.
+test::CliResult run_viewer_script(const std::filesystem::path& dir, const std::string& script,
+                                  int width, int height, const std::string& args) {
+    std::ofstream(dir / "script.txt") << script;
+    return test::run_command(
+        "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1920x1080x24' " EDACRT_VIEWER
+        " --width " +
+        std::to_string(width) + " --height " + std::to_string(height) + " --script " +
+        (dir / "script.txt").string() + " " + args);
+}
+
+TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_layout_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    // Every tab of both panels, a recording and a followed pixel (the widest tables), the
+    // help overlay, the analysis collapsed; check-layout queries ImGui's windows and counts
+    // table cells narrower than their text, and fails the script on any problem.
+    std::string script = "wait-spp 1\npick 700 200\nwait-analysis\n";
+    for (const char* tab : {"Scene", "Camera", "Render", "EDACRT"})
+        script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
+    for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal"})
+        script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
+    script += "set node 1\ntab Recursion\nframes 3\ncheck-layout\n";
+    script +=
+        "help on\nframes 3\ncheck-layout\nhelp off\nanalysis closed\nframes 3\ncheck-layout\n";
+    for (const auto& [width, height] : {std::pair{1024, 640}, std::pair{1600, 900}}) {
+        const auto result = run_viewer_script(
+            dir, script, width, height,
+            "--integrator primary " + (test::source_dir() / "assets/teapot/teapot.obj").string());
+        ASSERT_EQ(result.exit_code, 0) << width << "x" << height << "\n" << result.output;
+        std::size_t checks = 0;
+        for (std::size_t at = 0;
+             (at = result.output.find("layout ok: 2 panels", at)) != std::string::npos; ++at)
+            ++checks;
+        EXPECT_EQ(checks, 11u) << result.output;
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ViewerScreenshots, TheCopiedCommandLineRendersTheViewersImage) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_roundtrip_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    // A moved camera, a parameter changed; saves into folders that do not exist yet.
+    const auto saved = dir / "new" / "folder";
+    const std::string script =
+        "orbit 40 -25\nset seed 7\nset bins 4\nset spp 6\nwait-spp 6\n"
+        "save-linear " +
+        (saved / "view.pfm").string() + "\nsave-linear " + (saved / "view.exr").string() +
+        "\nsave-view " + (saved / "view.png").string() + "\nwrite-command " +
+        (dir / "command.txt").string() + "\nframes 2\nquit\n";
+    const auto viewer = run_viewer_script(
+        dir, script, 700, 500,
+        "--integrator path " +
+            (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string());
+    ASSERT_EQ(viewer.exit_code, 0) << viewer.output;
+    std::ifstream in(dir / "command.txt");
+    std::string command;
+    std::getline(in, command);
+    ASSERT_EQ(command.rfind("edacrt render ", 0), 0u) << command;
+    EXPECT_NE(command.find("--bins 4"), std::string::npos) << command;
+    EXPECT_NE(command.find("--seed 7"), std::string::npos) << command;
+    // The same command with its output in the test's folder.
+    command = command.substr(0, command.rfind(" --out ")) + " --out " + (dir / "cli.pfm").string();
+    const auto cli = test::run_command(std::string(EDACRT_CLI) + command.substr(6));
+    ASSERT_EQ(cli.exit_code, 0) << command << "\n" << cli.output;
+    const Image a = read_pfm(saved / "view.pfm"), b = read_pfm(dir / "cli.pfm");
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    EXPECT_TRUE(a.pixels == b.pixels) << "the viewer's render and the command's differ";
+    // The EXR goes through the CLI's image code: float, with the view in its header.
+    ImageMetadata metadata;
+    EXPECT_TRUE(read_exr(saved / "view.exr", &metadata).pixels == a.pixels);
+    const auto has = [&](const std::string& name, const std::string& value) {
+        return std::find(metadata.begin(), metadata.end(), std::pair(name, value)) !=
+               metadata.end();
+    };
+    EXPECT_TRUE(has("software", "EDACRT Studio (edacrt_viewer)"));
+    EXPECT_TRUE(has("spp", "6"));
+    EXPECT_TRUE(has("seed", "7"));
+    const Image shown = read_png(saved / "view.png");
+    EXPECT_EQ(shown.width, a.width) << "the PNG is the image region as shown";
+    EXPECT_EQ(shown.height, a.height);
+    if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
 TEST(ViewerScreenshots, ABrokenSceneOnTheCommandLineFailsClearly) {

@@ -74,12 +74,19 @@ Image read_png(const std::filesystem::path& path) {
 }
 
 void write_jpg(const std::filesystem::path& path, const Image& image, int quality) {
+    write_jpg_rgb8(path, to_srgb8(image), image.width, image.height, quality);
+}
+
+void write_jpg_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                    int height, int quality) {
+    if (rgb.size() != std::size_t(width) * std::size_t(height) * 3)
+        throw std::invalid_argument("write_jpg_rgb8: " + std::to_string(rgb.size()) +
+                                    " bytes for " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " pixels");
     if (quality < 1 || quality > 100)
         throw InputError("JPEG quality must be 1..100, not " + std::to_string(quality));
-    const std::vector<std::uint8_t> bytes = to_srgb8(image);
     OutputFile file(path, "JPEG");
-    if (!stbi_write_jpg_to_func(append_to_file, &file, image.width, image.height, 3, bytes.data(),
-                                quality))
+    if (!stbi_write_jpg_to_func(append_to_file, &file, width, height, 3, rgb.data(), quality))
         throw InputError(path.string() + ": cannot encode JPEG");
     file.close();
 }

@@ -35,6 +35,10 @@ Image read_png(const std::filesystem::path& path);
 /// Throws InputError when the file cannot be written.
 void write_jpg(const std::filesystem::path& path, const Image& image, int quality);
 
+/// Writes 8-bit RGB, rows from the top, as JPEG; as write_png_rgb8.
+void write_jpg_rgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                    int height, int quality);
+
 /// Writes linear RGB as Radiance RGBE (.hdr); NaN and negative values become 0, values beyond
 /// its range (about 1.7e38, +inf included) its largest. Throws InputError.
 void write_hdr(const std::filesystem::path& path, const Image& image);

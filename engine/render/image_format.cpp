@@ -48,6 +48,20 @@ void save_image(const std::filesystem::path& path, Image linear, const ImageOutp
     }
 }
 
+void save_srgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                int height, int jpeg_quality) {
+    const ImageFormat format = image_format(path);
+    if (is_linear(format))
+        throw InputError(path.string() +
+                         ": an image as shown is 8-bit sRGB: save it as .png or "
+                         ".jpg (the linear radiance can be saved as .hdr, .pfm or .exr)");
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    if (format == ImageFormat::jpg)
+        write_jpg_rgb8(path, rgb, width, height, jpeg_quality);
+    else
+        write_png_rgb8(path, rgb, width, height);
+}
+
 Image load_image(const std::filesystem::path& path) {
     switch (image_format(path)) {
         case ImageFormat::png:

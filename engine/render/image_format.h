@@ -3,6 +3,7 @@
 // 8-bit and which linear, for the CLI's --out and --reference and the viewer's save.
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "render/exr_image.h"
@@ -36,6 +37,12 @@ struct ImageOutput {
 /// Writes linear radiance in the format of the path's extension (tone-mapped for 8-bit
 /// formats), creating missing parent directories. Throws InputError.
 void save_image(const std::filesystem::path& path, Image linear, const ImageOutput& output);
+
+/// Writes pixels already tone-mapped and sRGB-encoded (rows from the top: what a window shows)
+/// as PNG or JPEG by the path's extension, creating missing parent directories. Throws
+/// InputError, also for the linear formats, which 8-bit pixels cannot fill.
+void save_srgb8(const std::filesystem::path& path, std::span<const std::uint8_t> rgb, int width,
+                int height, int jpeg_quality = 90);
 
 /// Reads any of the formats into linear RGB (8-bit ones decoded from sRGB). Throws InputError.
 Image load_image(const std::filesystem::path& path);

@@ -6,18 +6,37 @@
 #include <chrono>
 
 namespace edacrt {
+namespace {
+
+/// The camera ray of a path: through its pixel, jittered by the sample's pair 0.
+Ray camera_ray(const PinholeProjection& projection, std::size_t width, std::size_t pixel,
+               const PixelSampler& sampler) {
+    const glm::vec2 jitter = sampler.get_2d(0);
+    return projection.ray(float(pixel % width) + jitter.x, float(pixel / width) + jitter.y);
+}
+
+}  // namespace
 
 void Wavefront::camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>& rays) const {
     rays.resize(end - begin);
     const auto width = std::size_t(settings.width);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1024), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const glm::vec2 jitter = sampler(i).get_2d(0);
-            const std::size_t pixel = i % pixels;
-            rays[i - begin] =
-                projection.ray(float(pixel % width) + jitter.x, float(pixel / width) + jitter.y);
-        }
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+            rays[i - begin] = camera_ray(projection, width, i % pixels, sampler(i));
     });
+}
+
+std::vector<Ray> first_pass_camera_rays(const Camera& camera, const RenderSettings& settings) {
+    const PinholeProjection projection(camera, settings.width, settings.height);
+    const auto width = std::size_t(settings.width);
+    std::vector<Ray> rays(width * std::size_t(settings.height));
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, rays.size(), 1024), [&](const auto& range) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i)
+                rays[i] = camera_ray(projection, width, i,
+                                     PixelSampler(settings.seed, std::uint32_t(i), 0));
+        });
+    return rays;
 }
 
 bool Wavefront::trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) {

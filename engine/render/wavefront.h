@@ -61,6 +61,10 @@ struct Wavefront {
     bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);
 };
 
+/// The camera rays of the first pass's first sample, one per pixel row by row: the batch whose
+/// statistics Renderer::render_pass records (the viewer's analysis traces it again).
+std::vector<Ray> first_pass_camera_rays(const Camera& camera, const RenderSettings& settings);
+
 // The integrators: each renders paths [begin, end) of the pass into radiance[0, end - begin)
 // and returns false when cancelled.
 bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,

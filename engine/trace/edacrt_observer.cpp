@@ -35,7 +35,9 @@ RecordingObserver::RecordingObserver(TraceDetail& detail, const RayBatch& batch,
       both_(ray_count, 0),
       both_at_hit_(ray_count, 0),
       second_(ray_count, 0),
-      hit_depth_(ray_count, 0) {}
+      hit_depth_(ray_count, 0) {
+    if (detail.max_nodes > 0) detail_.hit_node.assign(ray_count, -1);
+}
 
 RecordingObserver::Timer::~Timer() {
     observer_.level(depth_).phase_seconds[int(phase_)] +=
@@ -78,7 +80,13 @@ RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
         record.rays = std::uint32_t(node.ray_count);
         record.triangles = std::uint32_t(node.tri_count);
         record.leaf_cost = cost_intersect_ * float(node.tri_count);
+        if (detail_.node_ray_ids.size() + node.ray_count <= detail_.max_node_ray_ids) {
+            record.ray_ids = std::int64_t(detail_.node_ray_ids.size());
+            const auto rays = ids(batch_.stream, node);
+            detail_.node_ray_ids.insert(detail_.node_ray_ids.end(), rays.begin(), rays.end());
+        }
     }
+    entered_record_ = visit.node;
     if (follows(node)) {
         visit.followed = std::int64_t(detail_.follow.size());
         detail_.follow.push_back({visit.node, clamp_depth(node.depth)});

@@ -69,6 +69,7 @@ class RecordingObserver {
         hit_path_[ray] = node.path;
         hit_depth_[ray] = std::uint16_t(std::min(node.depth, kPathLevels));
         both_at_hit_[ray] = both_[ray];
+        if (!detail_.hit_node.empty()) detail_.hit_node[ray] = entered_record_;
     }
     void leaf(Visit& visit, const Node& node, std::uint64_t tests);
 
@@ -91,6 +92,9 @@ class RecordingObserver {
     // The recorded parent and side of the next node entered (set by child()).
     std::int32_t next_parent_ = -1;
     int next_side_ = 0;
+    // The record of the node entered last: a leaf's hits are found before another is entered
+    // (this observer is not concurrent).
+    std::int32_t entered_record_ = -1;
 };
 
 }  // namespace edacrt

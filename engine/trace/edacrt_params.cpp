@@ -266,4 +266,20 @@ std::string param_text(const EdacrtParams& p, const ParamInfo& info) {
     return out.str();
 }
 
+float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles) {
+    if (p.filter_skip == FilterSkip::off) return 2.0f;
+    // Filtering costs C_bv for every ray; passing a ray unfiltered costs, if it misses the
+    // child (1 - alpha of the rays), what the child then spends on it, n_child C_child. Skip
+    // when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv / (n_child C_child).
+    // Paper: the child gets all the node's rays, more than leaf_rays, so the count thresholds
+    // make it a leaf exactly when it has at most leaf_tris triangles; a leaf tests each ray
+    // against those, an inner child against its two children's boxes. (A child that ends as
+    // a leaf otherwise, unsplittable or by the optional cost leaf, is priced as an inner one.)
+    const float n = float(child_triangles);
+    const float wasted = p.filter_skip == FilterSkip::triangles ? n * p.cost_child
+                         : child_triangles <= p.leaf_tris       ? n * p.cost_intersect
+                                                                : 2.0f * p.cost_filter;
+    return 1.0f - p.cost_filter / wasted;
+}
+
 }  // namespace edacrt

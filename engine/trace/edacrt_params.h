@@ -92,6 +92,10 @@ std::span<const std::string_view> preset_names();
 /// Throws InputError naming the first parameter out of range.
 void validate(const EdacrtParams& params);
 
+/// Section 3.4: the hit ratio above which a child's rays pass to it unfiltered (never, above
+/// 1, with FilterSkip::off); the child holds `child_triangles` triangles.
+float filter_skip_threshold(const EdacrtParams& params, std::uint32_t child_triangles);
+
 /// One parameter, described once.
 struct ParamInfo {
     enum class Kind { integer, real, choice };

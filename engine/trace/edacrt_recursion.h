@@ -239,22 +239,8 @@ class Recursion {
         return filter(node.ray_begin, count, box);
     }
 
-    /// Section 3.4: filtering costs C_bv for every ray; passing a ray unfiltered costs, if it
-    /// misses the child (1 - alpha of the rays), what the child then spends on it, n_child
-    /// C_child. Skip when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv /
-    /// (n_child C_child).
     bool skip_filter(const Split& split, int side) const {
-        if (p_.filter_skip == FilterSkip::off) return false;
-        const float n = float(split.count[side]);
-        // n_child C_child. Paper: the child gets all the node's rays, more than leaf_rays, so
-        // the count thresholds make it a leaf exactly when it has at most leaf_tris triangles;
-        // a leaf tests each ray against those, an inner child against its two children's
-        // boxes. (A child that ends as a leaf otherwise, unsplittable or by the optional cost
-        // leaf, is priced as an inner one.)
-        const float wasted = p_.filter_skip == FilterSkip::triangles ? n * p_.cost_child
-                             : split.count[side] <= p_.leaf_tris     ? n * p_.cost_intersect
-                                                                     : 2.0f * p_.cost_filter;
-        return split.alpha[side] > 1.0f - p_.cost_filter / wasted;
+        return split.alpha[side] > filter_skip_threshold(p_, std::uint32_t(split.count[side]));
     }
 
     /// Binning (Section 3.1, after Wald 2007), the hit ratios (Section 3.2), the cost model and
@@ -280,6 +266,7 @@ class Recursion {
             const BinSplit& s = sc.splits[j];
             CandidateSplit c{s.left, s.right, std::uint32_t(s.left_count),
                              std::uint32_t(s.right_count)};
+            c.plane = split.bins.origin + float(j + 1) / split.bins.scale;
             if (c.left_triangles == 0 || c.right_triangles == 0) {
                 c.cost = kInfinity;
                 obs_.candidate(visit, c);

@@ -118,6 +118,7 @@ struct CandidateSplit {
     std::uint32_t left_triangles = 0, right_triangles = 0;
     float alpha_left = 0.0f, alpha_right = 0.0f;  // sampled hit ratios (or area ratios)
     float cost = 0.0f;                            // C_T + C_I (a_L N_L + a_R N_R); inf if empty
+    float plane = 0.0f;  // on the node's axis: triangles whose centroid lies below go left
 };
 
 /// One node of a recorded recursion (TraceDetail::max_nodes > 0).
@@ -139,6 +140,9 @@ struct NodeRecord {
     bool filter_skipped[2] = {false, false};
     std::uint32_t rays_passed[2] = {0, 0};
     std::vector<CandidateSplit> candidates;
+    // Where the node's `rays` ray ids start in TraceDetail::node_ray_ids; -1 past that
+    // recording's budget.
+    std::int64_t ray_ids = -1;
 };
 
 /// A node the followed ray (TraceDetail::follow_ray) entered.
@@ -162,6 +166,14 @@ struct TraceDetail {
     std::int64_t follow_ray = -1;  // record the path of this ray through the recursion
     std::vector<NodeRecord> nodes;
     std::vector<RayVisit> follow;
+    // With recorded nodes: each node's ray ids, up to this many ids in all (the explorer tints
+    // a node's pixels) ...
+    std::size_t max_node_ray_ids = 0;
+    std::vector<std::uint32_t> node_ray_ids;
+    // ... and per ray, the recorded leaf that found its final hit (-1: none, or not recorded).
+    // Nodes are recorded in the order the recursion enters them, so a prefix of the nodes
+    // shows the hits found so far (the explorer's step-through).
+    std::vector<std::int32_t> hit_node;
 };
 
 }  // namespace edacrt

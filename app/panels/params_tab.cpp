@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <string>
 
-#include "viewer_state.h"
+#include "panels.h"
 
 namespace edacrt::app {
 namespace {
@@ -16,6 +16,8 @@ void tooltip(const ParamInfo& info) {
     ImGui::BeginTooltip();
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
     ImGui::TextUnformatted(info.help.data(), info.help.data() + info.help.size());
+    if (info.kind != ParamInfo::Kind::choice)
+        ImGui::TextDisabled("range %g to %g", info.min, info.max);
     ImGui::TextDisabled("--%.*s", int(info.key.size()), info.key.data());
     ImGui::PopTextWrapPos();
     ImGui::EndTooltip();
@@ -57,10 +59,7 @@ void widget(EdacrtParams& p, const ParamInfo& info) {
 
 }  // namespace
 
-void draw_params_panel(ViewerState& s) {
-    ImGui::SetNextWindowPos(ImVec2(10, 430), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin("EDACRT parameters");
+void draw_params_tab(ViewerState& s) {
     EdacrtParams& p = s.ui.params;
     if (s.ui.method != Method::edacrt && s.ui.method != Method::dacrt)
         ImGui::TextDisabled("(used by edacrt and dacrt only)");
@@ -71,8 +70,12 @@ void draw_params_panel(ViewerState& s) {
         ImGui::SameLine();
         if (ImGui::SmallButton(std::string(name).c_str())) p = preset_params(name);
     }
+    float label = 0.0f;
+    for (const ParamInfo& info : edacrt_param_info())
+        label = std::max(label, ImGui::CalcTextSize(std::string(info.label).c_str()).x);
+    ImGui::PushItemWidth(-label - ImGui::GetStyle().ItemSpacing.x);
     for (const ParamInfo& info : edacrt_param_info()) widget(p, info);
-    ImGui::End();
+    ImGui::PopItemWidth();
 }
 
 }  // namespace edacrt::app

@@ -1,0 +1,60 @@
+// Heat map tab: the view switch and the colour legend; the value under the cursor shows as a
+// tooltip over the image.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "panels.h"
+
+namespace edacrt::app {
+
+void draw_heatmap_tab(ViewerState& s, float heat_max) {
+    ImGui::TextDisabled("per pixel, the first pass's camera rays (the Statistics tab's batch)");
+    for (View view : kViews) {
+        if (ImGui::RadioButton(std::string(view_name(view)).c_str(), s.view == view)) s.view = view;
+        ImGui::SameLine();
+    }
+    ImGui::Checkbox("logarithmic", &s.heat_log);
+    if (s.view != View::render) {
+        // The legend: the turbo ramp with its scale.
+        const ImVec2 origin = ImGui::GetCursorScreenPos();
+        const float width = std::min(ImGui::GetContentRegionAvail().x, 480.0f), height = 16.0f;
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        constexpr int kSteps = 64;
+        for (int i = 0; i < kSteps; ++i) {
+            const glm::vec3 c = turbo((float(i) + 0.5f) / kSteps);
+            draw->AddRectFilled(ImVec2(origin.x + width * i / kSteps, origin.y),
+                                ImVec2(origin.x + width * (i + 1) / kSteps, origin.y + height),
+                                ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, 1.0f)));
+        }
+        ImGui::Dummy(ImVec2(width, height));
+        const float mid = s.heat_log ? std::expm1(0.5f * std::log1p(heat_max)) : 0.5f * heat_max;
+        ImGui::Text("0");
+        ImGui::SameLine(width * 0.45f);
+        ImGui::Text("%.0f", mid);
+        ImGui::SameLine(width * 0.85f);
+        ImGui::Text("%.0f", heat_max);
+
+        ImGui::TextDisabled("hover the image for a pixel's values");
+    }
+}
+
+void draw_heat_readout(const ViewerState& s) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const Rect& r = s.layout.image;
+    if (s.view == View::render || io.WantCaptureMouse || !s.frame || !s.frame->detail || r.empty())
+        return;
+    const int w = s.frame->image.width, h = s.frame->image.height;
+    const int x = int(std::floor((io.MousePos.x - r.x) / r.w * float(w)));
+    const int y = int(std::floor((io.MousePos.y - r.y) / r.h * float(h)));
+    if (x < 0 || y < 0 || x >= w || y >= h ||
+        std::size_t(y) * std::size_t(w) + std::size_t(x) >= s.frame->detail->rays.size())
+        return;
+    const RayStats& ray = s.frame->detail->rays[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+    ImGui::SetTooltip("pixel (%d, %d)\n%u box tests, %u triangle tests\ndepth %u, %u order misses",
+                      x, y, ray.ray_box_tests, ray.ray_triangle_tests, unsigned(ray.deepest_level),
+                      unsigned(ray.order_misses));
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,113 @@
+// The two panels of the fixed layout (app/layout.h): the controls column and the analysis
+// area, each a window pinned to its rectangle with a tab per subject; and the table-cell
+// helper whose clipping the layout check counts.
+#include "panels.h"
+
+#include <imgui.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <string>
+
+namespace edacrt::app {
+namespace {
+
+int clipped_cells = 0;
+
+constexpr ImGuiWindowFlags kPinned = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                     ImGuiWindowFlags_NoSavedSettings |
+                                     ImGuiWindowFlags_NoBringToFrontOnFocus;
+
+void pin(const Rect& r) {
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(r.w, r.h), ImGuiCond_Always);
+}
+
+/// Where the window ended up, for the layout check.
+void place(ViewerState& s, const char* name) {
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    s.placements.push_back({name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells()});
+}
+
+/// A tab; the script's `tab NAME` brings it forward.
+bool tab(ViewerState& s, const char* name) {
+    const bool select = std::erase(s.select_tabs, std::string(name)) > 0;
+    return ImGui::BeginTabItem(name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+}
+
+}  // namespace
+
+void cell_text(const char* format, ...) {
+    char text[256];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(text, sizeof text, format, args);
+    va_end(args);
+    // Columns size to their content from the previous frame: a cell is clipped when its text
+    // is wider than what is left of it.
+    if (ImGui::CalcTextSize(text).x > ImGui::GetContentRegionAvail().x + 1.0f) ++clipped_cells;
+    ImGui::TextUnformatted(text);
+}
+
+int take_clipped_cells() { return std::exchange(clipped_cells, 0); }
+
+void draw_controls(ViewerState& s) {
+    if (s.layout.controls.empty()) return;
+    pin(s.layout.controls);
+    ImGui::Begin("Controls", nullptr, kPinned | ImGuiWindowFlags_NoCollapse);
+    take_clipped_cells();
+    if (ImGui::BeginTabBar("controls")) {
+        if (tab(s, "Scene")) {
+            draw_scene_tab(s);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "Camera")) {
+            draw_camera_tab(s);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "Render")) {
+            draw_render_tab(s);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "EDACRT")) {
+            draw_params_tab(s);
+            ImGui::EndTabItem();
+        }
+        ImGui::EndTabBar();
+    }
+    place(s, "Controls");
+    ImGui::End();
+}
+
+void draw_analysis(ViewerState& s, float heat_max) {
+    if (s.layout.analysis.empty()) return;
+    pin(s.layout.analysis);
+    ImGui::SetNextWindowCollapsed(!s.analysis_open, ImGuiCond_Always);
+    const bool open = ImGui::Begin("Analysis", nullptr, kPinned);
+    // The title bar's arrow collapses it; the next frame's layout gives the image the room.
+    s.analysis_open = !ImGui::IsWindowCollapsed();
+    take_clipped_cells();
+    if (open && ImGui::BeginTabBar("analysis")) {
+        if (tab(s, "Statistics")) {
+            draw_stats_tab(s);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "Heat map")) {
+            draw_heatmap_tab(s, heat_max);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "Recursion")) {
+            draw_recursion_tab(s);
+            ImGui::EndTabItem();
+        }
+        if (tab(s, "Traversal")) {
+            draw_traversal_tab(s);
+            ImGui::EndTabItem();
+        }
+        ImGui::EndTabBar();
+    }
+    place(s, "Analysis");
+    ImGui::End();
+}
+
+}  // namespace edacrt::app

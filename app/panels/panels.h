@@ -1,0 +1,35 @@
+#pragma once
+// The viewer's panels: immediate-mode drawing of the ViewerState (ImGui, needs a frame).
+#include <imgui.h>
+
+#include "viewer_state.h"
+
+namespace edacrt::app {
+
+// The two panels (app/panels/panels.cpp) and their tabs, one file each under panels/.
+void draw_controls(ViewerState& state);
+void draw_analysis(ViewerState& state, float heat_max);
+void draw_help(ViewerState& state);
+void draw_scene_tab(ViewerState& state);
+void draw_camera_tab(ViewerState& state);
+void draw_render_tab(ViewerState& state);
+void draw_params_tab(ViewerState& state);
+void draw_stats_tab(ViewerState& state);
+void draw_heatmap_tab(ViewerState& state, float heat_max);
+void draw_recursion_tab(ViewerState& state);
+void draw_traversal_tab(ViewerState& state);
+/// The value under the cursor while a heat map is shown (a tooltip over the image).
+void draw_heat_readout(const ViewerState& state);
+
+/// Draws a box's projected edges over the image region (background draw list, clipped to it).
+void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const Aabb& box,
+                      unsigned colour, float thickness = 1.0f);
+/// Where image pixel (x, y) of a width x height image appears in the window.
+ImVec2 image_to_window(const ViewerState& state, float x, float y, int width, int height);
+
+/// A table cell's text; counts cells too narrow for it (the layout check reports them).
+void cell_text(const char* format, ...) IM_FMTARGS(1);
+/// Cells clipped since the last call.
+int take_clipped_cells();
+
+}  // namespace edacrt::app

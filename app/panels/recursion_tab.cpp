@@ -1,0 +1,220 @@
+// Recursion tab, the explorer (teaching): the boxes of one level of the current view's recursion
+// over the image, each node's rays, triangles and cost; a node's K - 1 candidate splits with their
+// costs and the chosen one.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "panels.h"
+#include "util/hash_random.h"
+
+namespace edacrt::app {
+namespace {
+
+unsigned node_colour(std::size_t node, float alpha = 1.0f) {
+    const glm::vec3 c = turbo(0.1f + 0.8f * hash_to_unit_float(pcg_hash(std::uint32_t(node))));
+    return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, alpha));
+}
+
+void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams& params) {
+    ImGui::Text("node %d: %u rays, %u triangles, split along %c; leaf cost %.1f", s.explorer_node,
+                node.rays, node.triangles, "xyz"[std::max(node.axis, 0)], node.leaf_cost);
+    s.hovered_candidate = -1;
+    const float height = float(node.candidates.size() + 1) * ImGui::GetTextLineHeightWithSpacing() +
+                         2.0f * ImGui::GetStyle().CellPadding.y * float(node.candidates.size() + 1);
+    if (!ImGui::BeginTable("candidates", 6,
+                           ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                           ImVec2(0, height + 4.0f)))
+        return;
+    for (const char* h : {"j", "N_L", "N_R", "a_L", "a_R", "cost"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (std::size_t j = 0; j < node.candidates.size(); ++j) {
+        const CandidateSplit& c = node.candidates[j];
+        ImGui::TableNextRow();
+        if (std::int32_t(j) == node.chosen)
+            ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg0, IM_COL32(40, 110, 60, 255));
+        ImGui::TableNextColumn();
+        cell_text("%zu%s", j, std::int32_t(j) == node.chosen ? " *" : "");
+        if (ImGui::IsItemHovered()) s.hovered_candidate = std::int32_t(j);
+        ImGui::TableNextColumn();
+        cell_text("%u", c.left_triangles);
+        ImGui::TableNextColumn();
+        cell_text("%u", c.right_triangles);
+        ImGui::TableNextColumn();
+        cell_text("%.3f", c.alpha_left);
+        ImGui::TableNextColumn();
+        cell_text("%.3f", c.alpha_right);
+        ImGui::TableNextColumn();
+        std::isfinite(c.cost) ? cell_text("%.1f", c.cost) : cell_text("(empty)");
+    }
+    ImGui::EndTable();
+    ImGui::TextDisabled(
+        "cost = C_T + C_I (a_L N_L + a_R N_R); * = chosen; hover a row: its "
+        "two child boxes; the candidate planes are drawn on the image");
+    if (node.chosen < 0) return;
+    // How good the estimate was (the share of all the node's rays that hit each chosen
+    // child), and the filter-skip decision (Section 3.4) it led to.
+    const CandidateSplit& c = node.candidates[std::size_t(node.chosen)];
+    ImGui::Text("%s child first", node.left_first ? "left" : "right");
+    const char* sides[] = {"left", "right"};
+    for (int side : {0, 1}) {
+        const float sampled = side == 0 ? c.alpha_left : c.alpha_right;
+        const std::uint32_t n = side == 0 ? c.left_triangles : c.right_triangles;
+        const float threshold = filter_skip_threshold(params, n);
+        char text[48] = "never (filter skipping off)";
+        if (threshold <= 1.0f) std::snprintf(text, sizeof text, "%.3f", threshold);
+        ImGui::TextWrapped(
+            "%s: a sampled %.3f, true %.3f; skip above 1 - C_bv/(n_child C_child) "
+            "= %s: %s",
+            sides[side], sampled, node.alpha_true[side], text,
+            node.filter_skipped[side] ? "passed unfiltered" : "filtered");
+    }
+}
+
+/// Step-through: the nodes in the order the recursion entered them (near child first); the
+/// node's rays tinted yellow, the pixels whose hit has been found so far green.
+void step_through(ViewerState& s, const Analysis& a) {
+    const auto& nodes = a.detail->nodes;
+    if (!ImGui::Checkbox("step through the recursion", &s.stepping) && !s.stepping) return;
+    const int last = int(nodes.size()) - 1;
+    s.step = std::clamp(s.step, 0, last);
+    if (ImGui::ArrowButton("##back", ImGuiDir_Left)) s.step = std::max(0, s.step - 1);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##next", ImGuiDir_Right)) s.step = std::min(last, s.step + 1);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(-1.0f);
+    ImGui::SliderInt("##step", &s.step, 0, last, "node %d");
+    const NodeRecord& n = nodes[std::size_t(s.step)];
+    std::size_t found = 0;
+    for (const std::int32_t h : a.detail->hit_node) found += h >= 0 && h <= s.step;
+    ImGui::TextWrapped(
+        "node %d of %zu, depth %u: %u rays x %u triangles, %s; hits found so far: "
+        "%zu of %zu rays (green); this node's rays yellow",
+        s.step, nodes.size(), unsigned(n.depth), n.rays, n.triangles,
+        n.leaf ? "a leaf (brute force)" : "split", found, a.detail->hit_node.size());
+    s.explorer_node = s.step;
+}
+
+}  // namespace
+
+void draw_recursion_tab(ViewerState& s) {
+    s.recursion_shown = true;
+    if (ImGui::Button(s.analysis_running ? "recording..." : "record")) s.analysis_requested = true;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("the view's camera rays", !s.explorer_crop)) s.explorer_crop = false;
+    ImGui::SameLine();
+    if (ImGui::RadioButton("a 64x64 crop (to step through)", s.explorer_crop))
+        s.explorer_crop = true;
+    ImGui::SameLine();
+    ImGui::Checkbox("tint pixels", &s.explorer_tint);
+    const Analysis* a = s.analysis.get();
+    if (!a || !a->error.empty() || !a->detail || a->detail->nodes.empty()) {
+        if (a && !a->error.empty())
+            ImGui::TextWrapped("%s", a->error.c_str());
+        else if (a)
+            ImGui::TextDisabled("(%s records no recursion)",
+                                std::string(method_name(a->method)).c_str());
+        return;
+    }
+    if (s.analysis_stale) {
+        ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1),
+                           "stale: recorded for another view, scene or parameters; boxes hidden");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("re-record")) s.analysis_requested = true;
+    }
+    ImGui::TextDisabled("recorded: %zu camera rays of the first pass (%s), %zu nodes",
+                        a->detail->rays.size(),
+                        a->crop_w == a->width && a->crop_h == a->height
+                            ? "the whole view, the Statistics tab's batch"
+                            : "a 64x64 crop at the centre, a batch of its own",
+                        a->detail->nodes.size());
+    step_through(s, *a);
+    const auto& nodes = a->detail->nodes;
+    int deepest = 0;
+    for (const NodeRecord& n : nodes) deepest = std::max(deepest, int(n.depth));
+    ImGui::SliderInt("level", &s.explorer_level, 0, deepest);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##down", ImGuiDir_Left))
+        s.explorer_level = std::max(0, s.explorer_level - 1);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("##up", ImGuiDir_Right))
+        s.explorer_level = std::min(deepest, s.explorer_level + 1);
+
+    // The level's nodes: boxes over the image, and a list to pick one from.
+    std::size_t shown = 0;
+    if (ImGui::BeginTable("nodes", 5,
+                          ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
+                              ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                          ImVec2(0, 130))) {
+        for (const char* h : {"node", "rays", "tris", "kind", "filter"}) ImGui::TableSetupColumn(h);
+        ImGui::TableSetupScrollFreeze(0, 1);
+        ImGui::TableHeadersRow();
+        for (std::size_t i = 0; i < nodes.size(); ++i) {
+            const NodeRecord& n = nodes[i];
+            if (n.depth != s.explorer_level) continue;
+            if (shown++ < 4000) draw_box_overlay(s, *a, n.box, node_colour(i, 0.8f));
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::PushStyleColor(ImGuiCol_Text, node_colour(i));
+            if (ImGui::Selectable(std::to_string(i).c_str(), s.explorer_node == std::int32_t(i),
+                                  ImGuiSelectableFlags_SpanAllColumns))
+                s.explorer_node = std::int32_t(i);
+            ImGui::PopStyleColor();
+            if (ImGui::IsItemHovered())
+                draw_box_overlay(s, *a, n.box, IM_COL32(255, 255, 255, 255), 3);
+            ImGui::TableNextColumn();
+            cell_text("%u", n.rays);
+            ImGui::TableNextColumn();
+            cell_text("%u", n.triangles);
+            ImGui::TableNextColumn();
+            cell_text("%s", n.leaf ? "leaf" : n.left_first ? "split, L first" : "split, R first");
+            ImGui::TableNextColumn();
+            if (!n.leaf)
+                cell_text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
+                          n.filter_skipped[1] ? "skip" : "filt");
+        }
+        ImGui::EndTable();
+    }
+    ImGui::Text("%zu nodes at level %d (%zu recorded in all)", shown, s.explorer_level,
+                nodes.size());
+
+    // The selected node's candidate splits; the chosen (or hovered) one drawn as two boxes.
+    if (s.explorer_node >= 0 && std::size_t(s.explorer_node) < nodes.size()) {
+        const NodeRecord& node = nodes[std::size_t(s.explorer_node)];
+        ImGui::Separator();
+        draw_box_overlay(s, *a, node.box, IM_COL32(255, 255, 255, 255), 2.0f);
+        if (node.leaf) {
+            ImGui::Text("node %d is a leaf: %u rays x %u triangles, brute force", s.explorer_node,
+                        node.rays, node.triangles);
+        } else {
+            candidates_table(s, node, a->params);
+            // The K - 1 candidate planes across the node's box, the chosen one brighter.
+            for (std::size_t k = 0; k < node.candidates.size(); ++k) {
+                Aabb plane = node.box;
+                plane.lo[node.axis] = plane.hi[node.axis] = node.candidates[k].plane;
+                const bool chosen = std::int32_t(k) == node.chosen;
+                draw_box_overlay(
+                    s, *a, plane,
+                    chosen ? IM_COL32(255, 255, 255, 220) : IM_COL32(120, 200, 255, 110),
+                    chosen ? 2.0f : 1.0f);
+            }
+            const std::int32_t j = s.hovered_candidate >= 0 ? s.hovered_candidate : node.chosen;
+            const CandidateSplit& c = node.candidates[std::size_t(j)];
+            draw_box_overlay(s, *a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);
+            draw_box_overlay(s, *a, c.right, IM_COL32(255, 150, 40, 255), 2.0f);
+        }
+        if (node.parent >= 0 && ImGui::Button("parent")) s.explorer_node = node.parent;
+        for (int side : {0, 1})
+            if (node.children[side] >= 0) {
+                ImGui::SameLine();
+                if (ImGui::Button(side == 0 ? "left child" : "right child"))
+                    s.explorer_node = node.children[side];
+            }
+        if (s.explorer_node >= 0) s.explorer_level = nodes[std::size_t(s.explorer_node)].depth;
+    }
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,141 @@
+// Render tab: method, integrator, samples, resolution, threads, seed, pause, tone mapping,
+// saving, progress.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "panels.h"
+#include "render/image_format.h"
+
+namespace edacrt::app {
+namespace {
+
+template <typename Enum, std::size_t N>
+bool combo(const char* label, Enum& value, const Enum (&options)[N],
+           std::string_view (*name)(Enum)) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, std::string(name(value)).c_str())) {
+        for (Enum option : options)
+            if (ImGui::Selectable(std::string(name(option)).c_str(), option == value)) {
+                changed = option != value;
+                value = option;
+            }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::embree,
+                               Method::naive};
+constexpr Integrator kIntegrators[] = {Integrator::primary, Integrator::ao, Integrator::path};
+constexpr PrimaryShading kShadings[] = {PrimaryShading::eye_light, PrimaryShading::normal,
+                                        PrimaryShading::albedo, PrimaryShading::depth};
+constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::single, EmbreeMode::packet8, EmbreeMode::stream};
+
+void tooltip(const char* text) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+}  // namespace
+
+void draw_render_tab(ViewerState& s) {
+    UiSettings& ui = s.ui;
+    ImGui::PushItemWidth(-ImGui::CalcTextSize("resolution").x - ImGui::GetStyle().ItemSpacing.x);
+    combo("method", ui.method, kMethods, method_name);
+    tooltip(
+        "how rays are traced: edacrt (Nabata 2013), dacrt (Afra 2012), bvh (binned SAH, rebuilt "
+        "per frame), embree, naive (every triangle)");
+    if (ui.method == Method::embree)
+        combo("embree mode", ui.embree_mode, kEmbreeModes, embree_mode_name);
+    combo("integrator", ui.integrator, kIntegrators, integrator_name);
+    tooltip(
+        "primary: camera rays only (debug shading); ao: ambient occlusion; path: path tracing with "
+        "next-event estimation");
+    if (ui.integrator == Integrator::primary)
+        combo("shading", ui.primary, kShadings, primary_shading_name);
+    if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
+    tooltip("path: bounces after the camera ray");
+    if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
+    ImGui::SliderInt("spp", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per pixel to accumulate");
+    ImGui::SliderFloat("resolution", &ui.resolution_scale, 0.125f, 1.0f, "%.3f x image");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("render size as a fraction of the image region's pixels");
+    if (!s.resolution_error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+        ImGui::TextWrapped("%s", s.resolution_error.c_str());
+        ImGui::PopStyleColor();
+    }
+    ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
+    tooltip("worker threads of the renderer and the tracer (0: all cores)");
+    ImGui::InputInt("seed", &ui.seed);
+    tooltip(
+        "the sample sequence: the same seed gives the same image for every method and thread "
+        "count");
+    ImGui::Checkbox("pause", &ui.paused);
+
+    ImGui::Separator();
+    ImGui::SliderFloat("exposure", &s.exposure, -8.0f, 8.0f, "%.1f stops");
+    tooltip("display only: radiance times 2^stops before tone mapping");
+    ImGui::Combo("tone map", &s.tone_map, "clamp\0Reinhard\0ACES\0");
+    tooltip("display only: how radiance above 1 is compressed");
+    ImGui::PopItemWidth();
+
+    ImGui::Separator();
+    if (ImGui::Button("save PNG (F12)")) s.save_requested = ViewerState::Save::shown;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("the image region as shown: the render or heat map, tone-mapped");
+    ImGui::SameLine();
+    ImGui::Checkbox("overlays", &s.save_overlays);
+    ImGui::SameLine();
+    if (ImGui::Button("save EXR")) s.save_requested = ViewerState::Save::linear;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the render's linear radiance as float OpenEXR, with the method, spp and camera in "
+            "its header (the script's save-linear FILE takes %s)",
+            image_extensions().c_str());
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("folder").x - ImGui::GetStyle().ItemSpacing.x);
+    ImGui::InputText("folder", &s.save_dir);
+    if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
+
+    ImGui::Separator();
+    if (!s.render_error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+        ImGui::TextWrapped("%s", s.render_error.c_str());
+        ImGui::PopStyleColor();
+    } else if (s.frame) {
+        const Frame& f = *s.frame;
+        const double mrays = f.total.trace_seconds > 0
+                                 ? double(f.total.trace.rays) / f.total.trace_seconds * 1e-6
+                                 : 0.0;
+        ImGui::Text("%dx%d  %s%d spp  %.2f s", f.image.width, f.image.height,
+                    f.preview ? "preview, " : "", f.spp, f.seconds);
+        ImGui::Text("%.2f Mrays/s in the tracer (%.0f%%)", mrays,
+                    f.seconds > 0 ? 100.0 * f.total.trace_seconds / f.seconds : 0.0);
+        ImGui::ProgressBar(float(f.spp) / float(std::max(ui.spp_target, 1)));
+        if (s.convergence.size() >= 2) {
+            // log10 of the change per pass: a straight line of slope -1/2 per decade of
+            // samples is Monte Carlo's 1/sqrt(N).
+            std::vector<float> values;
+            for (const auto& p : s.convergence)
+                values.push_back(float(std::log10(std::max(p.change, 1e-12))));
+            const auto& last = s.convergence.back();
+            char overlay[96];
+            std::snprintf(overlay, sizeof overlay, "%.2e at %d spp, %.1f s", last.change, last.spp,
+                          last.seconds);
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("convergence: log10 of each pass's relative RMS change");
+            ImGui::PopStyleColor();
+            ImGui::PlotLines("##convergence", values.data(), int(values.size()), 0, overlay,
+                             FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 70.0f));
+        }
+        if (s.comparing) ImGui::TextDisabled("paused while methods are compared");
+    }
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,176 @@
+// Statistics tab: per-level statistics of the camera rays of the first full-resolution pass
+// (the batch the heat maps, the explorer and the debugger show): a table, bar charts, totals
+// and per-ray means; and every method timed on the view's camera rays.
+#include <imgui.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "panels.h"
+
+namespace edacrt::app {
+namespace {
+
+/// One bar chart per level of a per-level value.
+void bars(const char* label, const std::vector<LevelStats>& levels, float width,
+          double (*value)(const LevelStats&)) {
+    std::vector<float> values;
+    for (const LevelStats& level : levels) values.push_back(float(value(level)));
+    ImGui::PlotHistogram(label, values.data(), int(values.size()), 0, nullptr, 0.0f, FLT_MAX,
+                         ImVec2(width, 56));
+}
+
+/// The per-level charts, two to a row: what each level of the recursion spends.
+void level_charts(const std::vector<LevelStats>& levels) {
+    ImGui::TextDisabled("per level, from the root (left) down:");
+    // Two charts and their labels to a row.
+    const float label = ImGui::CalcTextSize("sampling box tests").x + 16.0f;
+    const float width = std::clamp(ImGui::GetContentRegionAvail().x * 0.5f - label, 80.0f, 420.0f);
+    bars("rays in", levels, width, [](const LevelStats& l) { return double(l.rays_in); });
+    ImGui::SameLine();
+    bars("triangle tests", levels, width,
+         [](const LevelStats& l) { return double(l.ray_triangle_tests); });
+    bars("sampling box tests", levels, width,
+         [](const LevelStats& l) { return double(l.sample_box_tests); });
+    ImGui::SameLine();
+    bars("filter box tests", levels, width,
+         [](const LevelStats& l) { return double(l.filter_box_tests); });
+    bars("ms", levels, width, [](const LevelStats& l) { return l.seconds() * 1e3; });
+}
+
+/// Every method on the view's pixel-centre camera rays, the render paused meanwhile.
+void compare_section(ViewerState& s) {
+    ImGui::Separator();
+    if (ImGui::Button(s.comparing ? "comparing..." : "compare methods") && !s.comparing)
+        s.compare_requested = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("one camera ray per pixel, every method, median of 3 (render paused)");
+    if (s.comparison.empty()) return;
+    const MethodTotals* embree = nullptr;
+    for (const MethodTotals& m : s.comparison)
+        if (m.method == Method::embree && m.error.empty()) embree = &m;
+    const ImGuiTableFlags flags =
+        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
+    const float height = float(s.comparison.size() + 2) * ImGui::GetFrameHeightWithSpacing();
+    if (!ImGui::BeginTable("compare", 6, flags, ImVec2(0, height))) return;
+    for (const char* h : {"method", "ms", "Mrays/s", "/ embree", "box tests/ray", "tri tests/ray"})
+        ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const MethodTotals& m : s.comparison) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        cell_text("%s", std::string(method_name(m.method)).c_str());
+        ImGui::TableNextColumn();
+        if (!m.error.empty()) {
+            cell_text("%s", m.error.c_str());
+            continue;
+        }
+        const double n = double(std::max<std::uint64_t>(m.stats.rays, 1));
+        cell_text("%.1f", m.seconds * 1e3);
+        ImGui::TableNextColumn();
+        cell_text("%.1f", m.seconds > 0 ? n / m.seconds * 1e-6 : 0.0);
+        ImGui::TableNextColumn();
+        embree ? cell_text("%.2fx", m.seconds / std::max(embree->seconds, 1e-12))
+               : cell_text("n/a");
+        // Embree does not count its tests.
+        for (std::uint64_t tests : {m.stats.ray_box_tests, m.stats.ray_triangle_tests}) {
+            ImGui::TableNextColumn();
+            m.method == Method::embree ? cell_text("n/a") : cell_text("%.1f", double(tests) / n);
+        }
+    }
+    ImGui::EndTable();
+}
+
+}  // namespace
+
+void draw_stats_tab(ViewerState& s) {
+    const TraceDetail* detail = s.frame && s.frame->detail ? s.frame->detail.get() : nullptr;
+    if (!detail) {
+        ImGui::TextDisabled("waiting for the first full-resolution pass");
+        compare_section(s);
+        return;
+    }
+    const auto& levels = detail->levels;
+    std::uint64_t box = 0, tri = 0;
+    for (const RayStats& r : detail->rays) {
+        box += r.ray_box_tests;
+        tri += r.ray_triangle_tests;
+    }
+    const double rays = double(std::max<std::size_t>(detail->rays.size(), 1));
+    ImGui::Text("%s: the first pass's %zu camera rays (%dx%d, 1 per pixel), one batch",
+                std::string(method_name(s.submitted.method)).c_str(), detail->rays.size(),
+                s.frame->image.width, s.frame->image.height);
+    ImGui::Text("%.1f ray-box and %.1f ray-triangle tests per ray", double(box) / rays,
+                double(tri) / rays);
+    if (!levels.empty())
+        ImGui::Text("one recursion; %llu rays entered the scene box",
+                    static_cast<unsigned long long>(detail->root.entered));
+    if (levels.empty()) {
+        ImGui::TextDisabled("(%s has no recursion levels)",
+                            std::string(method_name(s.ui.method)).c_str());
+    } else {
+        const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                      ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
+                                      ImGuiTableFlags_SizingFixedFit;
+        // Order: of the rays that hit both children's boxes and found their hit below, the
+        // share whose hit was in the child visited first. alpha: estimated / true hit ratio.
+        const char* headers[] = {"level",      "nodes",      "leaves",     "rays in",
+                                 "rays down",  "filtered",   "skipped",    "tris",
+                                 "sample box", "filter box", "tri tests",  "order 1st",
+                                 "culled",     "alpha est",  "alpha true", "ms"};
+        const float rows = float(levels.size() + 3) * ImGui::GetTextLineHeightWithSpacing();
+        if (ImGui::BeginTable("levels", 16, flags, ImVec2(0, std::min(rows, 220.0f)))) {
+            for (const char* h : headers) ImGui::TableSetupColumn(h);
+            ImGui::TableSetupScrollFreeze(1, 1);
+            ImGui::TableHeadersRow();
+            const auto count = [](std::uint64_t v) {
+                ImGui::TableNextColumn();
+                cell_text("%llu", static_cast<unsigned long long>(v));
+            };
+            // The root filter: the batch against the scene box (rays in, rays down, filter
+            // box tests and time; the other columns do not apply).
+            const RootStats& root = detail->root;
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            cell_text("scene box");
+            ImGui::TableSetColumnIndex(3);
+            cell_text("%llu", static_cast<unsigned long long>(root.rays));
+            count(root.entered);
+            ImGui::TableSetColumnIndex(9);
+            cell_text("%llu", static_cast<unsigned long long>(root.box_tests));
+            ImGui::TableSetColumnIndex(15);
+            cell_text("%.2f", root.seconds * 1e3);
+            LevelStats total;
+            for (std::size_t i = 0; i <= levels.size(); ++i) {
+                const bool is_total = i == levels.size();
+                const LevelStats& l = is_total ? total : levels[i];
+                if (!is_total) total += l;
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                is_total ? cell_text("total") : cell_text("%zu", i);
+                for (std::uint64_t v : {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
+                                        l.filters_skipped, l.triangles, l.sample_box_tests,
+                                        l.filter_box_tests, l.ray_triangle_tests})
+                    count(v);
+                ImGui::TableNextColumn();
+                const std::uint64_t ordered = l.order_hits + l.order_misses;
+                if (ordered > 0)
+                    cell_text("%.0f%%", 100.0 * double(l.order_hits) / double(ordered));
+                count(l.culled_by_distance);
+                const double children = double(std::max<std::uint64_t>(l.alpha_children, 1));
+                ImGui::TableNextColumn();
+                cell_text("%.2f", l.alpha_estimated_sum / children);
+                ImGui::TableNextColumn();
+                cell_text("%.2f", l.alpha_true_sum / children);
+                ImGui::TableNextColumn();
+                cell_text("%.2f", l.seconds() * 1e3);
+            }
+            ImGui::EndTable();
+        }
+        level_charts(levels);
+    }
+
+    compare_section(s);
+}
+
+}  // namespace edacrt::app

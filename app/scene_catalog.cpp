@@ -1,0 +1,91 @@
+#include "scene_catalog.h"
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene/scene_paths.h"
+
+namespace edacrt::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kBuiltins[] = {"builtin:cornell", "builtin:sphere:subdiv=5",
+                                     "builtin:cube:n=8"};
+
+/// Every .obj under `dir`, sorted; an unreadable directory gives what could be read.
+std::vector<std::string> obj_files(const fs::path& dir) {
+    std::vector<std::string> list;
+    std::error_code error;
+    for (fs::recursive_directory_iterator it(dir, error), end; !error && it != end;
+         it.increment(error))
+        if (it->path().extension() == ".obj") list.push_back(it->path().string());
+    std::sort(list.begin(), list.end());
+    return list;
+}
+
+std::string with_commas(long long n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0 && digits[i - 1] != '-') out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+/// The public scenes of the manifest, or false when it cannot be read (the caller falls back
+/// to listing the scenes folder).
+bool add_public_scenes(const fs::path& assets, const fs::path& scenes, SceneCatalog& catalog) {
+    std::ifstream in(assets / "scenes.json");
+    if (!in) return false;
+    const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+    if (!manifest.is_object() || !manifest.contains("scenes") || !manifest["scenes"].is_array())
+        return false;
+    std::vector<CatalogEntry> found;
+    int missing = 0;
+    try {
+        for (const auto& scene : manifest["scenes"]) {
+            const auto folder = scene.at("folder").get<std::string>();
+            const auto file = scene.at("scene").get<std::string>();
+            std::error_code error;
+            if (fs::is_regular_file(assets / folder / file, error)) continue;  // bundled
+            const fs::path path = scenes / folder / file;
+            const bool present = fs::is_regular_file(path, error);
+            const long long triangles = scene.value("triangles", 0LL);
+            found.push_back({folder + (present ? " (" + with_commas(triangles) + " triangles)"
+                                               : " (not downloaded)"),
+                             path.string(), present});
+            missing += !present;
+        }
+    } catch (const nlohmann::json::exception&) {
+        return false;  // a malformed entry: the manifest as a whole is not trusted
+    }
+    catalog.entries.insert(catalog.entries.end(), found.begin(), found.end());
+    catalog.missing = missing;
+    if (missing > 0)
+        catalog.hint = std::to_string(missing) + (missing == 1 ? " more scene" : " more scenes") +
+                       ": run scripts/get-scenes (see assets/SCENES.md) to fetch into " +
+                       scenes.string();
+    return true;
+}
+
+}  // namespace
+
+SceneCatalog scene_catalog(const fs::path& assets, const fs::path& scenes) {
+    SceneCatalog catalog;
+    for (const std::string& file : obj_files(assets)) catalog.entries.push_back({file, file, true});
+    if (!add_public_scenes(assets, scenes, catalog))
+        for (const std::string& file : obj_files(scenes))
+            catalog.entries.push_back({file, file, true});
+    for (const char* builtin : kBuiltins) catalog.entries.push_back({builtin, builtin, true});
+    return catalog;
+}
+
+SceneCatalog scene_catalog(const fs::path& assets) {
+    fs::path dir = fs::absolute(assets).lexically_normal();
+    if (!dir.has_filename()) dir = dir.parent_path();  // "assets/"
+    return scene_catalog(assets, default_scenes_dir(dir.parent_path()));
+}
+
+}  // namespace edacrt::app

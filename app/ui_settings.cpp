@@ -1,0 +1,113 @@
+// The viewer's settings as the script and tests drive them: `set KEY VALUE`, view names, and
+// whether a recording still describes the render in progress.
+#include <cmath>
+#include <stdexcept>
+
+#include "render/film.h"
+#include "util/error.h"
+#include "viewer_state.h"
+
+namespace edacrt::app {
+
+void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
+    UiSettings& ui = s.ui;
+    EdacrtParams& p = ui.params;
+    const auto number = [&] {
+        try {
+            std::size_t used = 0;
+            const double v = std::stod(value, &used);
+            if (used != value.size() || !std::isfinite(v)) throw std::invalid_argument(value);
+            return v;
+        } catch (const std::exception&) {
+            throw InputError("'" + key + "' needs a number, got '" + value + "'");
+        }
+    };
+    if (key == "method")
+        ui.method = parse_method(value);
+    else if (key == "embree-mode")
+        ui.embree_mode = parse_embree_mode(value);
+    else if (key == "integrator")
+        ui.integrator = parse_integrator(value);
+    else if (key == "primary")
+        ui.primary = parse_primary_shading(value);
+    else if (key == "spp")
+        ui.spp_target = int(number());
+    else if (key == "max-depth")
+        ui.max_depth = int(number());
+    else if (key == "ao-samples")
+        ui.ao_samples = int(number());
+    else if (key == "resolution")
+        ui.resolution_scale = float(number());
+    else if (key == "threads")
+        ui.threads = int(number());
+    else if (key == "seed")
+        ui.seed = int(number());
+    else if (key == "pause")
+        ui.paused = number() != 0;
+    else if (key == "preset")
+        p = preset_params(value);
+    else if (const ParamInfo* info = find_param(key))
+        set_param(p, *info, value);
+    else if (key == "exposure") {
+        const auto exposure = float(number());
+        validate_exposure(exposure);
+        s.exposure = exposure;
+    } else if (key == "scene")
+        s.pending_loads.push_back(value);
+    else if (key == "level")
+        s.explorer_level = int(number());
+    else if (key == "node")
+        s.explorer_node = std::int32_t(number());
+    else if (key == "crop")
+        s.explorer_crop = number() != 0;
+    else if (key == "step") {
+        s.stepping = true;
+        s.step = int(number());
+    } else
+        throw InputError("unknown setting '" + key + "'");
+}
+
+View parse_view(const std::string& name) {
+    if (name == "render") return View::render;
+    if (name == "box") return View::box_tests;
+    if (name == "triangle") return View::triangle_tests;
+    if (name == "depth") return View::depth;
+    if (name == "order") return View::order_misses;
+    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
+}
+
+double relative_rms_change(const Image& a, const Image& b) {
+    double diff = 0.0, norm = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+        const glm::dvec3 d = glm::dvec3(a.pixels[i]) - glm::dvec3(b.pixels[i]);
+        const glm::dvec3 v(b.pixels[i]);
+        if (!std::isfinite(d.x + d.y + d.z + v.x + v.y + v.z)) continue;
+        diff += d.x * d.x + d.y * d.y + d.z * d.z;
+        norm += v.x * v.x + v.y * v.y + v.z * v.z;
+    }
+    return norm > 0.0 ? std::sqrt(diff / norm) : 0.0;
+}
+
+std::vector<float> explorer_tint(const Analysis& a, std::int32_t node, std::int32_t hits_up_to) {
+    std::vector<float> tint(std::size_t(a.width) * std::size_t(a.height), 0.0f);
+    if (!a.detail) return tint;
+    const TraceDetail& d = *a.detail;
+    if (hits_up_to >= 0)
+        for (std::size_t r = 0; r < d.hit_node.size(); ++r)
+            if (d.hit_node[r] >= 0 && d.hit_node[r] <= hits_up_to) tint[a.pixel_of(r)] = 2.0f;
+    if (node >= 0 && std::size_t(node) < d.nodes.size() &&
+        d.nodes[std::size_t(node)].ray_ids >= 0) {
+        const NodeRecord& n = d.nodes[std::size_t(node)];
+        for (std::uint32_t i = 0; i < n.rays; ++i)
+            tint[a.pixel_of(d.node_ray_ids[std::size_t(n.ray_ids) + i])] = 1.0f;
+    }
+    return tint;
+}
+
+bool analysis_stale(const Analysis& a, const RenderRequest& r) {
+    return a.scene != r.scene || !(a.camera == r.camera) || a.width != r.settings.width ||
+           a.height != r.settings.height || a.seed != r.settings.seed || a.method != r.method ||
+           !(a.params == r.params);
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,203 @@
+#include "viewer_jobs.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+
+#include "render/default_camera.h"
+#include "render/render_memory.h"
+#include "render/wavefront.h"
+#include "util/error.h"
+
+namespace edacrt::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+}  // namespace
+
+/// Loads a scene into the state; on failure keeps the previous one and shows the error. The
+/// camera flags override the scene's view (cli/camera_options.h), for the first scene only.
+void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions& flags) {
+    try {
+        auto scene = std::make_shared<Scene>(load_scene(spec));
+        if (scene->triangle_count() == 0) throw InputError(spec + ": the scene has no triangles");
+        s.scene_camera = default_camera(*scene);
+        s.camera.reset(cli::choose_camera(*scene, flags));
+        s.scene_label =
+            scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
+        for (const std::string& w : scene->warnings)
+            std::cerr << "edacrt_viewer: warning: " << w << "\n";
+        s.scene = std::move(scene);
+        s.scene_error.clear();
+        s.scene_path = spec;
+    } catch (const std::exception& e) {
+        s.scene_error = e.what();
+    }
+}
+
+/// The request for the current settings; width x height: the image region in framebuffer
+/// pixels.
+RenderRequest make_request(const ViewerState& s, int width, int height) {
+    RenderRequest r;
+    r.scene = s.scene;
+    r.camera = s.camera.camera();
+    r.method = s.ui.method;
+    r.params = s.ui.params;
+    r.embree_mode = s.ui.embree_mode;
+    r.settings.width = std::max(1, int(float(width) * s.ui.resolution_scale));
+    r.settings.height = std::max(1, int(float(height) * s.ui.resolution_scale));
+    r.settings.integrator = s.ui.integrator;
+    r.settings.primary = s.ui.primary;
+    r.settings.max_depth = s.ui.max_depth;
+    r.settings.ao_samples = s.ui.ao_samples;
+    r.settings.seed = std::uint32_t(s.ui.seed);
+    // The first pass renders one sample; once the view is still, passes take several samples
+    // of every pixel as one wavefront (large batches), in wavefronts small enough that a
+    // change cancels within a fraction of a second.
+    r.settings.samples_per_pass = 4;
+    r.settings.wavefront_paths = std::size_t(1) << 18;
+    r.spp_target = s.ui.spp_target;
+    r.threads = s.ui.threads;
+    return r;
+}
+
+// Bytes per pixel the viewer holds besides the renderer: up to three published frames (the
+// worker's newest, the one shown, the one shown before), the first pass's per-ray statistics
+// twice (captured and published), the driver's float texture (RGBA) and the heat map's values
+// and texture; plus the statistics batch, all of a pass's camera rays traced at once
+// (trace_bytes_per_ray(true): rays, hits, the tracer's buffers, the observer's).
+const std::uint64_t kViewerBytesPerPixel = 3 * sizeof(glm::vec3) + 2 * sizeof(RayStats) +
+                                           4 * sizeof(float) + 2 * sizeof(float) +
+                                           trace_bytes_per_ray(true);
+
+/// A new resolution (slider or window size) is taken only if the render fits in memory.
+/// Otherwise the error shows (and is printed once) and the previous resolution stays, the
+/// slider included. Returns false when there is no resolution to render at yet.
+bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest& submitted) {
+    if (request.settings.width == submitted.settings.width &&
+        request.settings.height == submitted.settings.height)
+        return true;
+    try {
+        check_render_memory(request.settings, kViewerBytesPerPixel);
+        s.resolution_error.clear();
+        s.accepted_resolution_scale = s.ui.resolution_scale;
+        return true;
+    } catch (const InputError& e) {
+        if (s.resolution_error != e.what())
+            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        s.resolution_error = e.what();
+        s.ui.resolution_scale = s.accepted_resolution_scale;
+        request.settings.width = submitted.settings.width;
+        request.settings.height = submitted.settings.height;
+        return submitted.settings.width > 0;
+    }
+}
+
+/// Traces one camera ray per pixel with every method (the Statistics tab), once the render
+/// has paused (its pass in flight finished): the median of three traces after the tracer's
+/// set_scene, which the median includes (per-frame cost: nothing is kept between frames).
+std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
+                                          int width, int height, EdacrtParams params,
+                                          const RenderWorker* worker) {
+    worker->wait_idle(std::chrono::seconds(60));
+    const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
+    std::vector<Hit> hits(rays.size());
+    std::vector<MethodTotals> out;
+    for (Method method :
+         {Method::edacrt, Method::dacrt, Method::bvh, Method::embree, Method::naive}) {
+        MethodTotals totals;
+        totals.method = method;
+        try {
+            if (method == Method::naive &&
+                double(rays.size()) * double(scene->triangle_count()) > 5e9)
+                throw InputError("skipped: too slow here");
+            double times[3];
+            for (double& t : times) {
+                const auto start = Clock::now();
+                const auto tracer = make_tracer(method, params);
+                tracer->set_scene(*scene);
+                totals.stats = tracer->trace(rays, hits, Query::closest);
+                t = std::chrono::duration<double>(Clock::now() - start).count();
+            }
+            std::sort(std::begin(times), std::end(times));
+            totals.seconds = times[1];
+        } catch (const std::exception& e) {
+            totals.error = e.what();
+        }
+        out.push_back(totals);
+    }
+    return out;
+}
+
+/// Records the recursion of the first pass's camera rays of the render in progress (the batch
+/// the statistics and heat maps show), or of a 64x64 crop of them at the image centre (a
+/// small batch to step through), following one pixel.
+std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
+                                        bool crop) {
+    auto a = std::make_shared<Analysis>();
+    a->scene = request.scene;
+    a->camera = request.camera;
+    a->width = request.settings.width;
+    a->height = request.settings.height;
+    a->seed = request.settings.seed;
+    a->method = request.method;
+    a->params = request.params;
+    a->pixel = pixel;
+    a->crop_w = crop ? std::min(64, a->width) : a->width;
+    a->crop_h = crop ? std::min(64, a->height) : a->height;
+    a->crop_x = (a->width - a->crop_w) / 2;
+    a->crop_y = (a->height - a->crop_h) / 2;
+    try {
+        std::vector<Ray> rays = first_pass_camera_rays(request.camera, request.settings);
+        std::int64_t follow = -1;
+        if (crop) {
+            std::vector<Ray> batch;
+            for (int y = 0; y < a->crop_h; ++y)
+                for (int x = 0; x < a->crop_w; ++x) {
+                    const std::int64_t p = std::int64_t(a->crop_y + y) * a->width + (a->crop_x + x);
+                    if (p == pixel) follow = std::int64_t(batch.size());
+                    batch.push_back(rays[std::size_t(p)]);
+                }
+            rays = std::move(batch);
+        } else {
+            follow = pixel;
+        }
+        std::vector<Hit> hits(rays.size());
+        auto detail = std::make_shared<TraceDetail>();
+        detail->max_nodes = 300'000;
+        detail->max_node_ray_ids = std::size_t(1) << 24;  // 64 MB
+        detail->follow_ray = follow;
+        const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
+        tracer->set_scene(*request.scene);
+        tracer->trace(rays, hits, Query::closest, detail.get());
+        if (follow >= 0) {
+            a->hit = hits[std::size_t(follow)];
+            a->ray = rays[std::size_t(follow)];
+        }
+        a->detail = std::move(detail);
+    } catch (const std::exception& e) {
+        a->error = e.what();
+    }
+    return a;
+}
+
+/// A file name from the scene and the time: out/sponza-20261201-235959.png.
+std::string timestamped(const ViewerState& s, const std::string& extension) {
+    const std::time_t now = std::time(nullptr);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+    std::string stem = std::filesystem::path(s.scene_path).stem().string();
+    if (stem.empty() || s.scene_path.rfind("builtin:", 0) == 0)
+        stem = s.scene_path.substr(0, s.scene_path.find(':', 8));
+    std::replace_if(
+        stem.begin(), stem.end(), [](char c) { return !std::isalnum(c) && c != '-'; }, '_');
+    return (std::filesystem::path(s.save_dir.empty() ? "." : s.save_dir) /
+            (stem + "-" + stamp + extension))
+        .string();
+}
+
+}  // namespace edacrt::app

@@ -1,0 +1,43 @@
+#pragma once
+// The viewer's work that needs no window (tested headless): loading scenes into the state,
+// turning the settings into a render request that fits in memory, the engine jobs run off the
+// UI thread (comparing methods, recording the recursion) and output names.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera_options.h"
+#include "render_worker.h"
+#include "viewer_state.h"
+
+namespace edacrt::app {
+
+/// Loads a scene into the state; on failure keeps the previous one and shows the error. The
+/// camera flags override the scene's view (cli/camera_options.h).
+void load_into(ViewerState& state, const std::string& spec,
+               const cli::CameraOptions& flags = cli::CameraOptions{});
+
+/// The request for the current settings; width x height: the image region in framebuffer
+/// pixels.
+RenderRequest make_request(const ViewerState& state, int width, int height);
+
+/// A new resolution is taken only if the render fits in memory; otherwise the error shows
+/// (printed once) and the previous resolution stays, the slider included. Returns false when
+/// there is no resolution to render at yet.
+bool fit_resolution(ViewerState& state, RenderRequest& request, const RenderRequest& submitted);
+
+/// Every method on one camera ray per pixel, once `worker` is idle (the caller pauses it):
+/// the median of three set_scene + trace.
+std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
+                                          int width, int height, EdacrtParams params,
+                                          const RenderWorker* worker);
+
+/// Records the recursion of the request's first-pass camera rays (or a 64x64 crop of them at
+/// the image centre), following one pixel.
+std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
+                                        bool crop);
+
+/// SAVE_DIR/SCENE-YYYYmmdd-HHMMSS.EXT.
+std::string timestamped(const ViewerState& state, const std::string& extension);
+
+}  // namespace edacrt::app

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <vector>
 
 #include "cli_runner.h"
 #include "test_paths.h"
@@ -125,6 +126,26 @@ TEST_F(ImageFormatTest, UnknownExtensionsAreRefusedWithTheKnownOnes) {
         EXPECT_FALSE(std::filesystem::exists(path(name))) << name;
         EXPECT_THROW(load_image(path(name)), InputError) << name;
     }
+}
+
+TEST_F(ImageFormatTest, PixelsAsShownArePngOrJpegByExtension) {
+    // What a window shows (the viewer's save-view and --screenshot): 8-bit sRGB already.
+    const std::vector<std::uint8_t> rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 128, 128, 128};
+    save_srgb8(path("shown.png"), rgb, 2, 2);
+    save_srgb8(path("dir/shown.jpg"), rgb, 2, 2);
+    EXPECT_EQ(head(path("shown.png"), 4), "\x89PNG");
+    EXPECT_EQ(head(path("dir/shown.jpg"), 3), "\xFF\xD8\xFF");
+    EXPECT_EQ(read_png(path("shown.png")).at(1, 0), glm::vec3(0, 1, 0));
+    for (const char* name : {"shown.exr", "shown.pfm", "shown.hdr"}) {
+        try {
+            save_srgb8(path(name), rgb, 2, 2);
+            ADD_FAILURE() << name << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("save it as .png or .jpg"), std::string::npos)
+                << e.what();
+        }
+    }
+    EXPECT_THROW(save_srgb8(path("shown.gif"), rgb, 2, 2), InputError);
 }
 
 TEST_F(ImageFormatTest, HdrKeepsRgbePrecisionAndClampsWhatItCannotHold) {

@@ -23,7 +23,7 @@ struct Material {
     float ns = 0.0f;     // specular exponent
     float ni = 1.0f;     // index of refraction
     int illum = 2;       // MTL illumination model
-    std::vector<TextureMap> textures;
+    std::vector<TextureMap> textures{};
 
     bool emissive() const { return ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f; }
 };

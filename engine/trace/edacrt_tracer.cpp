@@ -23,8 +23,13 @@ void EdacrtTracer::set_params(const EdacrtParams& params) {
 }
 
 void EdacrtTracer::set_scene(const Scene& scene) {
-    triangles_ = gather_triangles(scene);
+    gather_triangles(scene, triangles_);
     prepare_triangles();
+}
+
+UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
+    set_scene(scene);  // no structure to keep: the recursion starts from the triangles
+    return UpdateWork::none;
 }
 
 void EdacrtTracer::prepare_triangles() {

@@ -102,6 +102,10 @@ AnimatedScene load_animated_scene(const std::string& scene_spec,
     return out;
 }
 
+bool animation_has_geometry(std::string_view animation_spec) {
+    return animation_spec.ends_with(".json") || animation_spec.starts_with("sequence:");
+}
+
 std::string animation_help() {
     return "  wave[:amplitude=A,wavelength=L,period=P,axis=y,direction=x]\n"
            "      a travelling wave: corners move by up to A along `axis`, crests L apart\n"

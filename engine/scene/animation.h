@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "scene/scene.h"
 
@@ -65,6 +66,10 @@ struct AnimatedScene {
 /// An empty `animation_spec` gives the still scene. The scene holds time 0. Throws InputError
 /// for a bad spec, parameter or file, naming it.
 AnimatedScene load_animated_scene(const std::string& scene_spec, const std::string& animation_spec);
+
+/// Whether `animation_spec` brings its own geometry (an animation file, an OBJ sequence) rather
+/// than deforming a scene.
+bool animation_has_geometry(std::string_view animation_spec);
 
 /// One line per animation kind, for --help texts.
 std::string animation_help();

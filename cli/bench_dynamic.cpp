@@ -33,9 +33,11 @@ struct Variant {
     std::string label;
     Method method;
     SceneUpdate how;
+    EdacrtParams params = {};
 };
 
-/// Each method once; the BVH and Embree in each of their ways to take a frame.
+/// Each method once; the BVH and Embree in each of their ways to take a frame, and EDACRT also
+/// without pre-split pieces, whose clipping is most of its per-frame work on large triangles.
 std::vector<Variant> make_variants(const std::vector<std::string>& names) {
     std::vector<Variant> variants;
     for (const std::string& name : names) {
@@ -55,6 +57,13 @@ std::vector<Variant> make_variants(const std::vector<std::string>& names) {
                     variants.push_back(
                         {"embree/" + std::string(scene_update_name(how)), method, how});
                 break;
+            case Method::edacrt: {
+                variants.push_back({name, method, SceneUpdate::rebuild});
+                EdacrtParams no_pieces;
+                no_pieces.presplit = 0.0f;
+                variants.push_back({"edacrt/presplit-0", method, SceneUpdate::rebuild, no_pieces});
+                break;
+            }
             default:
                 variants.push_back({name, method, SceneUpdate::rebuild});
         }
@@ -91,7 +100,7 @@ DynamicSetRun run_set(AnimatedScene& animated, const std::vector<Variant>& varia
     std::vector<std::unique_ptr<Tracer>> tracers;
     animation.frame(0.0, scene);
     for (const Variant& v : variants) {
-        tracers.push_back(make_tracer(v.method, EdacrtParams{}, kDefaultEmbreeMode));
+        tracers.push_back(make_tracer(v.method, v.params, kDefaultEmbreeMode));
         tracers.back()->update_scene(scene, v.how);
         run.methods.push_back({v.label, v.method, v.how, UpdateWork::none, {}, {}, {}, false});
     }

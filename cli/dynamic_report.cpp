@@ -146,9 +146,10 @@ std::vector<Crossover> crossovers(const std::vector<DynamicSetRun>& runs) {
     for (const DynamicSetRun& run : runs) {
         if (!run.sweep()) continue;
         for (const DynamicRow& row : dynamic_rows(run)) {
-            const std::string& label = row.method->label;
-            if (!row.per_edacrt || label == "edacrt" || label == "dacrt") continue;
-            curves[{run.scene, label}].emplace_back(run.rays_per_triangle(), *row.per_edacrt);
+            const Method method = row.method->method;
+            if (!row.per_edacrt || method == Method::edacrt || method == Method::dacrt) continue;
+            curves[{run.scene, row.method->label}].emplace_back(run.rays_per_triangle(),
+                                                                *row.per_edacrt);
         }
     }
     std::vector<Crossover> out;

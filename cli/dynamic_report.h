@@ -56,7 +56,8 @@ struct Crossover {
     std::string text;  // "3.1", "below 0.0625" (faster everywhere), "above 16" (never)
 };
 
-/// For every method of the sweeps of `runs` other than EDACRT and DACRT: the smallest rays
+/// For every method of the sweeps of `runs` that keeps a structure (not EDACRT in any of its
+/// settings, not DACRT): the smallest rays
 /// per triangle from which it is faster than EDACRT at every larger sweep point, interpolated
 /// linearly in log(rays per triangle) and log(time ratio) from the last point where it was
 /// slower. Empty without EDACRT.

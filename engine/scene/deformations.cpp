@@ -231,8 +231,7 @@ class Twist final : public Deformation {
 /// that neighbours part. Degenerate triangles (no normal) stay. Shading normals are unchanged.
 class Explode final : public Deformation {
   public:
-    Explode(SpecOptions& options, Scene& scene)
-        : Explode(read(options), (split_corners(scene), scene)) {}
+    Explode(SpecOptions& options, Scene& scene) : Explode(read(options), scene) {}
 
   private:
     struct Params {
@@ -262,7 +261,7 @@ class Explode final : public Deformation {
     Explode(const Params& p, Scene& scene)
         : Deformation("explode:distance=" + shortest_text(p.distance) +
                           ",period=" + shortest_text(p.period),
-                      scene, p.period),
+                      (split_corners(scene), scene), p.period),
           p_(p),
           offsets_(scene.triangle_count()) {
         for (std::size_t i = 0; i < scene.triangle_count(); ++i) {

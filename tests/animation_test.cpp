@@ -224,6 +224,13 @@ TEST(Animation, NonFinitePositionsAreErrorsNamingTimeAndTriangle) {
     const std::string message = error_of([&] { wave->frame(0.1, scene); });
     EXPECT_TRUE(contains(message, "wave:amplitude=1,")) << message;
     EXPECT_TRUE(contains(message, "at t = 0.1 s: triangle 0 has a non-finite corner")) << message;
+
+    // A mesh without extent has nothing to wave along: it stays.
+    Scene point = scene;
+    point.positions.assign(6, glm::vec3(1, 2, 3));
+    const auto still = make_deformation("wave", point);
+    still->frame(0.3, point);
+    EXPECT_EQ(point.positions, std::vector<glm::vec3>(6, glm::vec3(1, 2, 3)));
 }
 
 TEST(FramePattern, WritesAndReadsPrintfNumbers) {

@@ -139,7 +139,8 @@ class Wave final : public Deformation {
 
     void write_frame(double t, Scene& scene) override {
         const double amplitude = p_.amplitude * diagonal_;
-        const double k = kTwoPi / (p_.wavelength * diagonal_);  // radians per unit length
+        // Radians per unit length; a mesh without extent does not move.
+        const double k = diagonal_ > 0.0 ? kTwoPi / (p_.wavelength * diagonal_) : 0.0;
         const double phase = kTwoPi * cycle(t, p_.period);
         const double lo = box_.lo[p_.direction];
         glm::dvec3 axis(0.0), direction(0.0);

@@ -6,11 +6,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
 
+#include "bench_dynamic.h"
 #include "bench_rays.h"
 #include "bench_report.h"
 #include "bench_scenes.h"
@@ -38,6 +38,9 @@ struct BenchOptions {
     bool quiet = false;
     std::uint32_t seed = 1;
     std::string json_path, markdown_path;
+    // --dynamic (bench_dynamic.h): the frames of an animation instead of still frames.
+    bool dynamic = false;
+    DynamicBenchOptions animation;
 };
 
 /// A tracer to time: a method, and for Embree one of its modes.
@@ -120,13 +123,6 @@ void check_memory(const BenchOptions& o, std::size_t variants) {
                          std::to_string(need / 1'000'000) + " MB with " + std::to_string(variants) +
                          " tracers, more than the " + std::to_string(limit.bytes / 1'000'000) +
                          " MB of " + limit.source + "; choose a smaller --width/--height or --spp");
-}
-
-/// Fails now rather than after the whole run.
-void check_writable(const std::string& path, const char* option) {
-    if (path.empty()) return;
-    if (!std::ofstream(path, std::ios::app))
-        throw InputError(std::string(option) + " " + path + ": cannot write this file");
 }
 
 /// The variant the others are compared with: naive when measured, else the first of our
@@ -219,6 +215,22 @@ void write_outputs(const BenchOptions& o, const std::vector<int>& thread_counts,
 }
 
 void run(const BenchOptions& o) {
+    if (o.dynamic) {
+        DynamicBenchOptions d = o.animation;
+        d.scenes = o.scenes;
+        d.scenes_dir = o.scenes_dir;
+        d.scenes_dir_required = !o.scenes.empty() || !o.scenes_dir.empty();
+        d.methods = o.methods;
+        d.spp = o.spp;
+        d.width = o.width;
+        d.height = o.height;
+        d.threads = o.threads;
+        d.seed = o.seed;
+        d.json_path = o.json_path;
+        d.markdown_path = o.markdown_path;
+        run_dynamic_bench(d);
+        return;
+    }
     const std::vector<Variant> variants = make_variants(o.methods);
     const std::vector<SetChoice> sets = make_set_choices(o);
     check_memory(o, variants.size());
@@ -373,6 +385,25 @@ std::function<void()> add_bench_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--json", o.json_path, "write every measurement and the machine here");
     command->add_option("--markdown", o.markdown_path, "write the table as markdown here");
+    const std::string dynamic = "Dynamic scenes (--dynamic)";
+    command
+        ->add_flag("--dynamic", o.dynamic,
+                   "animate the scenes (default: bunny, sponza) and time every method frame by "
+                   "frame on camera rays: update (bvh and embree: rebuild, refit; embree: "
+                   "dynamic; edacrt, dacrt: none) + trace, and a sweep of rays per triangle")
+        ->group(dynamic);
+    command->add_option("--animate", o.animation.animation, "the animation (see render --help)")
+        ->capture_default_str()
+        ->group(dynamic);
+    command->add_option("--frames", o.animation.frames, "timed frames per set (medians)")
+        ->capture_default_str()
+        ->group(dynamic);
+    command
+        ->add_option("--rays-per-triangle", o.animation.rays_per_triangle,
+                     "the sweep: 1-spp camera sets of these many rays per triangle")
+        ->capture_default_str()
+        ->delimiter(',')
+        ->group(dynamic);
     return [options] { run(*options); };
 }
 

@@ -12,12 +12,6 @@
 namespace edacrt::cli {
 namespace {
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
 std::vector<double> frame_seconds(const MethodRun& m) {
@@ -109,6 +103,12 @@ std::string cpu_model() {
 }
 
 }  // namespace
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
 
 std::vector<Row> make_rows(const SetRun& run, const SetRun* single_thread) {
     double best_embree = std::numeric_limits<double>::infinity();

@@ -41,6 +41,9 @@ struct Row {
     bool shown = true;                       // false for the slower Embree modes
 };
 
+/// The median of `v` (not empty).
+double median(std::vector<double> v);
+
 /// Rows of `run`; `single_thread` is the same set at 1 thread (thread sweep), if any.
 std::vector<Row> make_rows(const SetRun& run, const SetRun* single_thread);
 

@@ -1,6 +1,7 @@
 #include "common_options.h"
 
 #include <chrono>
+#include <fstream>
 #include <iostream>
 
 #include "progress.h"
@@ -113,6 +114,12 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void check_writable(const std::string& path, const char* option) {
+    if (path.empty()) return;
+    if (!std::ofstream(path, std::ios::app))
+        throw InputError(std::string(option) + " " + path + ": cannot write this file");
 }
 
 }  // namespace edacrt::cli

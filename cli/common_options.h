@@ -42,6 +42,10 @@ Scene load_scene_verbose(const std::string& spec);
 /// Writes `stats` as pretty JSON when --stats was given.
 void write_stats(const CommonOptions& options, const nlohmann::json& stats);
 
+/// Throws InputError when `path` (given by `option`) cannot be written, so that a long run
+/// fails now rather than at its end. Empty: nothing to check.
+void check_writable(const std::string& path, const char* option);
+
 /// Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);
 

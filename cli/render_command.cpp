@@ -10,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "animation_options.h"
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
@@ -26,6 +27,7 @@ namespace {
 
 struct RenderOptions {
     CommonOptions common;
+    AnimationOptions animation;
     RenderSettings settings;
     std::string integrator = "path";
     std::string primary = "eye-light";
@@ -54,6 +56,11 @@ std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
     return reference + std::max(image, stats);
 }
 
+void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
+                  ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
+                  AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
+                  const Camera& camera);
+
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
@@ -77,15 +84,32 @@ void run(const RenderOptions& o) {
         throw InputError(o.reference + ": the reference is " + std::to_string(reference->width) +
                          "x" + std::to_string(reference->height) + ", the render " +
                          std::to_string(settings.width) + "x" + std::to_string(settings.height));
-    const Scene scene = load_scene_verbose(o.common.scene);
-    const Camera camera = choose_camera(scene, o.camera);
-
-    auto start = std::chrono::steady_clock::now();
-    tracer->set_scene(scene);
-    const double prepare_seconds = seconds_since(start);
-
-    Renderer renderer(scene, *tracer, camera, settings);
+    // An animation (animation_options.h) renders each frame to its own file; a still scene
+    // is one frame at t = 0.
+    const std::vector<FrameJob> frames = frame_jobs(o.animation, o.out);
+    if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
+        throw InputError("--reference and --stats are for one image: give --time, not --frames");
+    AnimatedScene animated = load_animated_verbose(o.common.scene, o.animation);
+    const Camera camera = choose_camera(animated.scene, o.camera);
+    Renderer renderer(animated.scene, *tracer, camera, settings);
     for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";
+    for (const FrameJob& frame : frames)
+        render_frame(o, frame, settings, tone, exr_pixel, reference, animated, *tracer, renderer,
+                     camera);
+}
+
+/// Renders one image of `frame` with `renderer`: the animation's geometry at the frame's time,
+/// taken by the tracer as --update says, then the passes, the image and the statistics.
+void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
+                  ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
+                  AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
+                  const Camera& camera) {
+    const Scene& scene = animated.scene;
+    if (animated.animation) animated.animation->frame(frame.time, animated.scene);
+    const UpdateStats update = tracer.update_scene(scene, parse_scene_update(o.animation.update));
+    const double prepare_seconds = update.seconds;
+    renderer.scene_changed();
+    std::chrono::steady_clock::time_point start;
     // With only a time budget, render until it is spent.
     const int spp = o.time_budget_only() ? 1 << 20 : o.spp;
     TraceDetail detail;
@@ -127,51 +151,63 @@ void run(const RenderOptions& o) {
     progress.finish();
     const double render_seconds = elapsed;
 
+    const std::filesystem::path out(frame.out);
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     // A temporary only: the image is gone before the statistics trace below.
     save_image(
-        o.out, renderer.film().mean(),
+        frame.out, renderer.film().mean(),
         {o.exposure, tone, o.jpeg_quality, exr_pixel,
-         render_metadata({"edacrt render", scene.source, std::string(method_name(tracer->method())),
+         render_metadata({"edacrt render", scene.source, std::string(method_name(tracer.method())),
                           o.integrator, renderer.film().passes(), settings.seed, render_seconds,
                           camera})});
 
     const PassStats& total = renderer.total();
     const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;
+    if (animated.animation)
+        std::cout << "frame " << frame.index << " (t = " << frame.time
+                  << " s): " << method_name(tracer.method()) << " " << update_work_name(update.work)
+                  << " in " << update.seconds * 1e3 << " ms; ";
     std::cout << "rendered " << settings.width << "x" << settings.height << " at "
               << renderer.film().passes() << " spp (" << o.integrator << ") with "
-              << method_name(tracer->method()) << " in " << render_seconds
+              << method_name(tracer.method()) << " in " << render_seconds
               << " s: " << total.trace.rays << " rays in " << total.batches << " batches traced in "
-              << total.trace_seconds << " s (" << mrays << " Mrays/s), written to " << o.out
+              << total.trace_seconds << " s (" << mrays << " Mrays/s), written to " << frame.out
               << "\n";
     if (total.dropped_samples)
         std::cerr << "edacrt: warning: " << total.dropped_samples
                   << " non-finite samples were replaced by black\n";
 
-    nlohmann::json stats = {{"command", "render"},
-                            {"scene", scene.source},
-                            {"triangles", scene.triangle_count()},
-                            {"method", method_name(tracer->method())},
-                            {"integrator", o.integrator},
-                            {"width", settings.width},
-                            {"height", settings.height},
-                            {"spp", renderer.film().passes()},
-                            {"seed", settings.seed},
-                            {"rays", total.trace.rays},
-                            {"batches", total.batches},
-                            {"ray_box_tests", total.trace.ray_box_tests},
-                            {"ray_triangle_tests", total.trace.ray_triangle_tests},
-                            {"prepare_seconds", prepare_seconds},
-                            {"trace_seconds", total.trace_seconds},
-                            {"render_seconds", render_seconds},
-                            {"mrays_per_second", mrays},
-                            {"dropped_samples", total.dropped_samples},
-                            {"passes", passes}};
-    if (tracer->method() == Method::embree) stats["embree_mode"] = o.common.embree_mode;
+    nlohmann::json stats = {
+        {"command", "render"},
+        {"scene", scene.source},
+        {"triangles", scene.triangle_count()},
+        {"method", method_name(tracer.method())},
+        {"integrator", o.integrator},
+        {"width", settings.width},
+        {"height", settings.height},
+        {"spp", renderer.film().passes()},
+        {"seed", settings.seed},
+        {"rays", total.trace.rays},
+        {"batches", total.batches},
+        {"ray_box_tests", total.trace.ray_box_tests},
+        {"ray_triangle_tests", total.trace.ray_triangle_tests},
+        {"prepare_seconds", prepare_seconds},
+        {"scene_update", {{"mode", o.animation.update}, {"work", update_work_name(update.work)}}},
+        {"trace_seconds", total.trace_seconds},
+        {"render_seconds", render_seconds},
+        {"mrays_per_second", mrays},
+        {"dropped_samples", total.dropped_samples},
+        {"passes", passes}};
+    if (tracer.method() == Method::embree) stats["embree_mode"] = o.common.embree_mode;
+    if (animated.animation) {
+        stats["animation"] = animated.animation->spec();
+        stats["time"] = frame.time;
+    }
     if (!o.common.stats_path.empty()) {
         const std::vector<Ray> rays =
             PinholeProjection(camera, settings.width, settings.height).pixel_centre_rays();
         std::vector<Hit> hits(rays.size());
-        tracer->trace(rays, hits, Query::closest, &detail);
+        tracer.trace(rays, hits, Query::closest, &detail);
     }
     stats["detail"] = to_json(detail);
     stats["detail"]["from"] = "an extra, untimed trace of one camera ray per pixel centre";
@@ -244,6 +280,7 @@ std::function<void()> add_render_command(CLI::App& app) {
                      "with the render's settings in its header)")
         ->capture_default_str();
     add_camera_options(*command, o.camera);
+    add_animation_options(*command, o.animation);
     return [options] { run(*options); };
 }
 

@@ -1,13 +1,13 @@
 #include "scene/obj_loader.h"
 
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
 
+#include "temp_dir.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -437,27 +437,7 @@ INSTANTIATE_TEST_SUITE_P(
                "t.obj:2: unexpected '\\x01\\x02x'"}),
     [](const auto& info) { return std::string(info.param.name); });
 
-/// A scratch directory removed at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "edacrt_obj_XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path write(const std::string& name, std::string_view text) const {
-        std::ofstream(path_ / name, std::ios::binary) << text;
-        return path_ / name;
-    }
-
-  private:
-    fs::path path_;
-};
+using test::TempDir;
 
 std::string load_error(const fs::path& path) {
     try {

@@ -93,4 +93,9 @@ void Renderer::reset() {
     last_pass_ = total_ = PassStats{};
 }
 
+void Renderer::scene_changed() {
+    shading_ = ShadingScene(scene_);
+    reset();
+}
+
 }  // namespace edacrt

@@ -36,6 +36,11 @@ class Renderer {
     /// Starts over (the next pass is sample 0 again).
     void reset();
 
+    /// Starts over on the scene's new geometry (an animation frame: Animation::frame() wrote
+    /// it and the tracer took it with update_scene()): the lights' areas and the scene's
+    /// bounds are recomputed.
+    void scene_changed();
+
     const Film& film() const { return film_; }
     const RenderSettings& settings() const { return settings_; }
     const PassStats& last_pass() const { return last_pass_; }

@@ -1,7 +1,6 @@
 #include "scene/builtin_scenes.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
@@ -11,52 +10,10 @@
 #include <vector>
 
 #include "util/error.h"
+#include "util/spec_options.h"
 
 namespace edacrt {
 namespace {
-
-using Options = std::map<std::string, std::string, std::less<>>;
-
-/// Splits "NAME[:k=v,k=v]" after the "builtin:" prefix.
-std::pair<std::string, Options> parse_spec(std::string_view spec) {
-    const std::string_view body = spec.substr(std::string_view("builtin:").size());
-    const std::size_t colon = body.find(':');
-    std::string name(body.substr(0, colon));
-    Options options;
-    if (colon == std::string_view::npos) return {name, options};
-    std::string_view rest = body.substr(colon + 1);
-    while (!rest.empty()) {
-        const std::size_t comma = rest.find(',');
-        const std::string_view item = rest.substr(0, comma);
-        const std::size_t eq = item.find('=');
-        if (eq == std::string_view::npos || eq == 0)
-            throw InputError(std::string(spec) + ": expected key=value, got '" + std::string(item) +
-                             "'");
-        options[std::string(item.substr(0, eq))] = std::string(item.substr(eq + 1));
-        rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
-    }
-    return {name, options};
-}
-
-/// Takes `key` out of the options as a number in [lo, hi], or returns the default.
-template <typename T>
-T take_option(Options& options, std::string_view spec, const char* key, T fallback, T lo, T hi) {
-    const auto it = options.find(key);
-    if (it == options.end()) return fallback;
-    const std::string text = it->second;
-    options.erase(it);
-    T value{};
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size() || !(value >= lo && value <= hi))
-        throw InputError(std::string(spec) + ": " + key + " must be a number in [" +
-                         std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + text + "'");
-    return value;
-}
-
-void reject_leftovers(const Options& options, std::string_view spec) {
-    if (!options.empty())
-        throw InputError(std::string(spec) + ": unknown option '" + options.begin()->first + "'");
-}
 
 void finish(Scene& scene, std::string_view spec) {
     scene.source = std::string(spec);
@@ -216,24 +173,27 @@ Scene make_cornell() {
 }  // namespace
 
 Scene make_builtin_scene(std::string_view spec) {
-    auto [name, options] = parse_spec(spec);
+    const std::string_view body = spec.substr(std::string_view("builtin:").size());
+    const std::size_t colon = body.find(':');
+    const std::string_view name = body.substr(0, colon);
+    SpecOptions options(spec, colon == std::string_view::npos ? "" : body.substr(colon + 1));
     Scene scene;
     if (name == "cornell") {
         scene = make_cornell();
     } else if (name == "sphere") {
-        scene = make_sphere(take_option(options, spec, "subdiv", 3, 0, 9));
+        scene = make_sphere(options.number("subdiv", 3, 0, 9));
     } else if (name == "cube") {
-        scene = make_cube(take_option(options, spec, "n", 4, 1, 1000));
+        scene = make_cube(options.number("n", 4, 1, 1000));
     } else if (name == "soup") {
-        const int count = take_option(options, spec, "count", 1000, 1, 10'000'000);
-        const auto seed = take_option<std::uint32_t>(options, spec, "seed", 1, 0, UINT32_MAX);
-        const float size = take_option(options, spec, "size", 0.1f, 1e-6f, 10.0f);
+        const int count = options.number("count", 1000, 1, 10'000'000);
+        const auto seed = options.number<std::uint32_t>("seed", 1, 0, UINT32_MAX);
+        const float size = options.number("size", 0.1f, 1e-6f, 10.0f);
         scene = make_soup(count, seed, size);
     } else {
         throw InputError("unknown built-in scene '" + std::string(spec) + "'; available:\n" +
                          builtin_scene_help());
     }
-    reject_leftovers(options, spec);
+    options.finish();
     finish(scene, spec);
     return scene;
 }

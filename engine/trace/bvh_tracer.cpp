@@ -1,6 +1,7 @@
 #include "trace/bvh_tracer.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -36,6 +37,59 @@ void BvhTracer::set_scene(const Scene& scene) {
     leaf_triangles_.resize(bvh_prims_.size());
     for (std::size_t k = 0; k < bvh_prims_.size(); ++k)
         leaf_triangles_[k] = triangles[bvh_prims_[k]];
+}
+
+UpdateWork BvhTracer::update(const Scene& scene, SceneUpdate how) {
+    if (how != SceneUpdate::refit || wide_.empty() || scene.triangle_count() != bvh_prims_.size()) {
+        set_scene(scene);
+        return UpdateWork::rebuilt;
+    }
+    refit(scene);
+    return UpdateWork::refitted;
+}
+
+void BvhTracer::refit(const Scene& scene) {
+    const auto set_lane = [](Bvh8Node& node, int lane, const Aabb& box) {
+        for (int axis = 0; axis < 3; ++axis) {
+            node.boxes.lo[axis][lane] = box.lo[axis];
+            node.boxes.hi[axis][lane] = box.hi[axis];
+        }
+    };
+    const auto used = [](const Bvh8Node& node, int lane) {
+        return node.boxes.lo[0][lane] != kInfinity;  // unused lanes hold empty boxes
+    };
+    // Leaf lanes from their triangles' conservative bounds, as build_bvh boxed them.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, wide_.size(), 64), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            Bvh8Node& node = wide_[i];
+            for (int lane = 0; lane < 8; ++lane) {
+                if (!used(node, lane) || node.count[lane] == 0) continue;
+                Aabb box;
+                for (std::uint32_t k = node.child[lane]; k < node.child[lane] + node.count[lane];
+                     ++k) {
+                    leaf_triangles_[k] = scene.corners(bvh_prims_[k]);
+                    box.extend(conservative_bounds(leaf_triangles_[k]));
+                }
+                set_lane(node, lane, box);
+            }
+        }
+    });
+    // Inner lanes from their child's lanes: collapse_bvh8 stores children after their parent,
+    // so from the last node back to the root every child is done before its parent.
+    for (std::size_t i = wide_.size(); i-- > 0;) {
+        Bvh8Node& node = wide_[i];
+        for (int lane = 0; lane < 8; ++lane) {
+            if (!used(node, lane) || node.count[lane] != 0) continue;
+            const Bvh8Node& child = wide_[node.child[lane]];
+            Aabb box;
+            for (int c = 0; c < 8 && used(child, c); ++c)
+                for (int axis = 0; axis < 3; ++axis) {
+                    box.lo[axis] = std::min(box.lo[axis], child.boxes.lo[axis][c]);
+                    box.hi[axis] = std::max(box.hi[axis], child.boxes.hi[axis][c]);
+                }
+            set_lane(node, lane, box);
+        }
+    }
 }
 
 std::size_t BvhTracer::working_bytes() const {

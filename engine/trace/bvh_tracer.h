@@ -10,6 +10,7 @@ namespace edacrt {
 /// Baseline with a stored structure: a binned-SAH BVH (Wald 2007, bvh_build.h) built in
 /// set_scene() (per frame) and collapsed to 8 children per node (bvh_wide.h); traversed per ray
 /// with a stack, nearest child first, skipping children that start beyond the nearest hit so far.
+/// update_scene(refit) keeps the tree and refits its boxes to the triangles' new positions.
 class BvhTracer final : public Tracer {
   public:
     Method method() const override { return Method::bvh; }
@@ -21,10 +22,15 @@ class BvhTracer final : public Tracer {
     const std::vector<std::uint32_t>& prims() const { return bvh_prims_; }
 
   protected:
+    UpdateWork update(const Scene& scene, SceneUpdate how) override;
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                            TraceDetail* detail) override;
 
   private:
+    /// The tree kept, every box recomputed from the triangles of `scene` (same count) as the
+    /// build computes them, so the hits stay exact.
+    void refit(const Scene& scene);
+
     template <Query Q>
     TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
 

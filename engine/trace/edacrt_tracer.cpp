@@ -2,6 +2,7 @@
 #include "trace/edacrt_tracer.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,41 +24,44 @@ void EdacrtTracer::set_params(const EdacrtParams& params) {
 }
 
 void EdacrtTracer::set_scene(const Scene& scene) {
-    triangles_ = gather_triangles(scene);
+    gather_triangles(scene, triangles_);
     prepare_triangles();
 }
 
+UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
+    set_scene(scene);  // no structure to keep: the recursion starts from the triangles
+    return UpdateWork::none;
+}
+
 void EdacrtTracer::prepare_triangles() {
-    scene_.box = Aabb{};
-    if (params_.presplit == 0.0f || triangles_.empty()) {
-        scene_.triangles = triangles_;
-        scene_.bounds.resize(scene_.triangles.size());
-        scene_.centroids.resize(scene_.triangles.size());
-        scene_.prims.resize(scene_.triangles.size());
-        for (std::size_t i = 0; i < scene_.triangles.size(); ++i) {
-            const Triangle& tri = scene_.triangles[i];
-            const Aabb& bounds = scene_.bounds[i] = conservative_bounds(tri);
-            scene_.centroids[i] = centroid(tri);
-            scene_.prims[i] = std::uint32_t(i);
-            scene_.box.extend(bounds);
-        }
-        return;
-    }
-    // Pieces of triangles (presplit.h): a piece keeps its whole triangle for the intersection
-    // and is binned by its clipped box's centre.
-    const std::vector<PrimReference> refs = presplit_references(triangles_, params_.presplit);
-    const std::size_t n = refs.size();
+    // Per frame (update_scene() of an animation): in parallel, into the storage of the last
+    // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece keeps its
+    // whole triangle for the intersection and is binned by its clipped box's centre.
+    const bool pieces = params_.presplit != 0.0f && !triangles_.empty();
+    const std::vector<PrimReference> refs =
+        pieces ? presplit_references(triangles_, params_.presplit) : std::vector<PrimReference>{};
+    const std::size_t n = pieces ? refs.size() : triangles_.size();
     scene_.triangles.resize(n);
     scene_.bounds.resize(n);
     scene_.centroids.resize(n);
     scene_.prims.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        scene_.triangles[i] = triangles_[refs[i].prim];
-        scene_.bounds[i] = refs[i].box;
-        scene_.centroids[i] = refs[i].box.center();
-        scene_.prims[i] = refs[i].prim;
-        scene_.box.extend(refs[i].box);
-    }
+    scene_.box = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 4096), Aabb{},
+        [&](const tbb::blocked_range<std::size_t>& range, Aabb box) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const std::uint32_t prim = pieces ? refs[i].prim : std::uint32_t(i);
+                const Triangle& tri = scene_.triangles[i] = triangles_[prim];
+                scene_.bounds[i] = pieces ? refs[i].box : conservative_bounds(tri);
+                scene_.centroids[i] = pieces ? refs[i].box.center() : centroid(tri);
+                scene_.prims[i] = prim;
+                box.extend(scene_.bounds[i]);
+            }
+            return box;
+        },
+        [](Aabb a, const Aabb& b) {
+            a.extend(b);
+            return a;
+        });
 }
 
 std::size_t EdacrtTracer::working_bytes() const {

@@ -34,6 +34,7 @@ class EdacrtTracer final : public Tracer {
     };
 
   protected:
+    UpdateWork update(const Scene& scene, SceneUpdate how) override;
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                            TraceDetail* detail) override;
 

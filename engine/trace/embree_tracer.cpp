@@ -189,33 +189,80 @@ EmbreeTracer::EmbreeTracer(EmbreeMode mode) : mode_(mode) {
 }
 
 EmbreeTracer::~EmbreeTracer() {
-    if (scene_) rtcReleaseScene(scene_);
+    release();
     rtcReleaseDevice(device_);
 }
 
-void EmbreeTracer::set_scene(const Scene& scene) {
+void EmbreeTracer::release() {
+    if (geometry_) rtcReleaseGeometry(geometry_);
     if (scene_) rtcReleaseScene(scene_);
-    scene_ = nullptr;  // no stale scene to trace if this one is refused
+    geometry_ = nullptr;
+    scene_ = nullptr;  // no stale scene to trace if the next one is refused
+}
+
+void EmbreeTracer::set_scene(const Scene& scene) { build(scene, SceneUpdate::rebuild); }
+
+void EmbreeTracer::build(const Scene& scene, SceneUpdate how) {
+    release();
     device_memory_.peak = device_memory_.current.load();
     check_scene_for_embree(scene);
     scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const bool dynamic = how != SceneUpdate::rebuild;
+    rtcSetSceneFlags(scene_,
+                     RTCSceneFlags(RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
+                                   (dynamic ? RTC_SCENE_FLAG_DYNAMIC : 0)));
+    geometry_ = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (dynamic) {
+        // Low scene quality makes Embree build two levels, where the geometry's own quality
+        // (low, or refit) applies.
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
+        rtcSetGeometryBuildQuality(
+            geometry_, how == SceneUpdate::refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW);
+    }
     auto* vertices = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+        rtcSetNewGeometryBuffer(geometry_, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                 3 * sizeof(float), scene.positions.size()));
     auto* indices = static_cast<std::uint32_t*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+        rtcSetNewGeometryBuffer(geometry_, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                 3 * sizeof(std::uint32_t), scene.triangles.size()));
     if (!vertices || !indices) throw InputError("Embree: cannot allocate the geometry buffers");
     std::memcpy(vertices, scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
     std::memcpy(indices, scene.triangles.data(),
                 scene.triangles.size() * 3 * sizeof(std::uint32_t));
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(scene_, geometry);
-    rtcReleaseGeometry(geometry);
+    rtcCommitGeometry(geometry_);
+    rtcAttachGeometry(scene_, geometry_);
     rtcCommitScene(scene_);
-    triangles_ = gather_triangles(scene);
+    built_for_ = how;
+    vertices_ = scene.positions.size();
+    gather_triangles(scene, triangles_);
+}
+
+bool EmbreeTracer::same_topology(const Scene& scene) const {
+    if (scene.positions.size() != vertices_ || scene.triangles.size() != triangles_.size())
+        return false;
+    const void* indices = rtcGetGeometryBufferData(geometry_, RTC_BUFFER_TYPE_INDEX, 0);
+    return std::memcmp(indices, scene.triangles.data(),
+                       scene.triangles.size() * 3 * sizeof(std::uint32_t)) == 0;
+}
+
+UpdateWork EmbreeTracer::update(const Scene& scene, SceneUpdate how) {
+    if (how == SceneUpdate::rebuild || !scene_ || built_for_ != how || !same_topology(scene)) {
+        build(scene, how);
+        return UpdateWork::rebuilt;
+    }
+    try {
+        check_scene_for_embree(scene);
+    } catch (const InputError&) {
+        release();
+        throw;
+    }
+    std::memcpy(rtcGetGeometryBufferData(geometry_, RTC_BUFFER_TYPE_VERTEX, 0),
+                scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
+    rtcUpdateGeometryBuffer(geometry_, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(geometry_);
+    rtcCommitScene(scene_);
+    gather_triangles(scene, triangles_);
+    return how == SceneUpdate::refit ? UpdateWork::refitted : UpdateWork::rebuilt;
 }
 
 std::size_t EmbreeTracer::working_bytes() const {

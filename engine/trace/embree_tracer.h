@@ -14,6 +14,9 @@ namespace edacrt {
 /// packets of 8 (rtcIntersect8) or streams (rtcIntersect1M), as `mode` says. Embree decides
 /// which triangles a ray passes through; the distances are ours (a filter accepts only
 /// candidates our distance test accepts, so spawned rays do not self-intersect).
+/// update_scene(dynamic) keeps a dynamic scene (RTC_SCENE_FLAG_DYNAMIC, two-level at low build
+/// quality) and its buffers, rebuilding the geometry's BVH at low quality per commit;
+/// update_scene(refit) the same with RTC_BUILD_QUALITY_REFIT, which refits it.
 class EmbreeTracer final : public Tracer {
   public:
     explicit EmbreeTracer(EmbreeMode mode = kDefaultEmbreeMode);
@@ -26,10 +29,18 @@ class EmbreeTracer final : public Tracer {
     std::size_t working_bytes() const override;
 
   protected:
+    UpdateWork update(const Scene& scene, SceneUpdate how) override;
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                            TraceDetail* detail) override;
 
   private:
+    /// A new Embree scene for `scene`: static (rebuild) or dynamic with the build quality
+    /// `how` asks for, its geometry kept for later updates.
+    void build(const Scene& scene, SceneUpdate how);
+    /// Whether the kept geometry has `scene`'s vertex count and corner indices.
+    bool same_topology(const Scene& scene) const;
+    void release();
+
     void trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query, std::size_t begin,
                      std::size_t end);
     /// Embree's closest hits with our distance and barycentrics (triangle.h, hit_distance):
@@ -42,6 +53,9 @@ class EmbreeTracer final : public Tracer {
     std::vector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
+    RTCGeometry geometry_ = nullptr;  // scene_'s only geometry
+    SceneUpdate built_for_ = SceneUpdate::rebuild;
+    std::size_t vertices_ = 0;
     // What the device holds, from its memory monitor (called from Embree's threads), and the
     // most it held since set_scene() began.
     struct DeviceMemory {

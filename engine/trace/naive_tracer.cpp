@@ -43,7 +43,12 @@ std::uint64_t trace_all(std::span<const Triangle> triangles, std::span<const Ray
 
 }  // namespace
 
-void NaiveTracer::set_scene(const Scene& scene) { triangles_ = gather_triangles(scene); }
+void NaiveTracer::set_scene(const Scene& scene) { gather_triangles(scene, triangles_); }
+
+UpdateWork NaiveTracer::update(const Scene& scene, SceneUpdate) {
+    set_scene(scene);
+    return UpdateWork::none;
+}
 
 TraceStats NaiveTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                     TraceDetail* detail) {

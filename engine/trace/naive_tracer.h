@@ -13,6 +13,7 @@ class NaiveTracer final : public Tracer {
     std::size_t working_bytes() const override { return triangles_.capacity() * sizeof(Triangle); }
 
   protected:
+    UpdateWork update(const Scene& scene, SceneUpdate how) override;
     TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                            TraceDetail* detail) override;
 

@@ -1,5 +1,10 @@
 #include "trace/tracer.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
 #include "trace/bvh_tracer.h"
 #include "trace/edacrt_tracer.h"
 #ifdef EDACRT_HAS_EMBREE
@@ -88,9 +93,59 @@ EmbreeMode parse_embree_mode(std::string_view name) {
 
 std::vector<Triangle> gather_triangles(const Scene& scene) {
     std::vector<Triangle> triangles;
-    triangles.reserve(scene.triangles.size());
-    for (std::size_t i = 0; i < scene.triangle_count(); ++i) triangles.push_back(scene.corners(i));
+    gather_triangles(scene, triangles);
     return triangles;
+}
+
+void gather_triangles(const Scene& scene, std::vector<Triangle>& out) {
+    out.resize(scene.triangle_count());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 4096), [&](const auto& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) out[i] = scene.corners(i);
+    });
+}
+
+UpdateStats Tracer::update_scene(const Scene& scene, SceneUpdate how) {
+    const auto start = std::chrono::steady_clock::now();
+    UpdateStats stats;
+    stats.work = update(scene, how);
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+}
+
+UpdateWork Tracer::update(const Scene& scene, SceneUpdate) {
+    set_scene(scene);
+    return UpdateWork::rebuilt;
+}
+
+std::string_view scene_update_name(SceneUpdate how) {
+    switch (how) {
+        case SceneUpdate::rebuild:
+            return "rebuild";
+        case SceneUpdate::dynamic:
+            return "dynamic";
+        case SceneUpdate::refit:
+            return "refit";
+    }
+    return "?";
+}
+
+SceneUpdate parse_scene_update(std::string_view name) {
+    for (SceneUpdate how : {SceneUpdate::rebuild, SceneUpdate::dynamic, SceneUpdate::refit})
+        if (scene_update_name(how) == name) return how;
+    throw InputError("unknown scene update '" + std::string(name) +
+                     "' (known: rebuild, dynamic, refit)");
+}
+
+std::string_view update_work_name(UpdateWork work) {
+    switch (work) {
+        case UpdateWork::none:
+            return "none";
+        case UpdateWork::rebuilt:
+            return "rebuilt";
+        case UpdateWork::refitted:
+            return "refitted";
+    }
+    return "?";
 }
 
 }  // namespace edacrt

@@ -26,6 +26,24 @@ inline constexpr EmbreeMode kDefaultEmbreeMode =
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };
 
+/// How update_scene() takes a new frame of the same triangles (an animation, animation.h).
+enum class SceneUpdate {
+    rebuild,  // everything from scratch, as set_scene()
+    dynamic,  // embree: a dynamic scene (RTC_SCENE_FLAG_DYNAMIC) kept with its buffers and
+              // committed per frame at low build quality; the others rebuild
+    refit,    // bvh, embree: the tree kept, its boxes refitted to the new positions (Embree:
+              // RTC_BUILD_QUALITY_REFIT); the others rebuild
+};
+
+/// What update_scene() did to the tracer's structure. `none`: the method keeps no structure
+/// (naive, dacrt, edacrt), only per-frame triangle data (EDACRT's pre-split pieces included).
+enum class UpdateWork { none, rebuilt, refitted };
+
+struct UpdateStats {
+    UpdateWork work = UpdateWork::none;
+    double seconds = 0.0;  // wall clock of the whole update
+};
+
 /// Traces batches of rays against one scene. Every method returns the same hits for the same
 /// rays (up to ties between triangles hit at the same distance).
 class Tracer {
@@ -37,6 +55,14 @@ class Tracer {
     /// Prepares for batches against `scene`: per-frame triangle data, acceleration structures.
     /// Call again whenever the geometry changes. The tracer keeps no reference to `scene`.
     virtual void set_scene(const Scene& scene) = 0;
+
+    /// Takes the geometry of `scene` for the next batches, as `how` asks, and says what that
+    /// did and cost. `dynamic` and `refit` keep what the last update or set_scene() built when
+    /// `scene` has the same vertex and triangle counts and the same corner indices (an
+    /// Animation's frames do); otherwise, and on the first call, they build from scratch and
+    /// report it (`rebuilt`). Every mode gives the same hits as set_scene(); refitted trees are
+    /// only slower to trace. The tracer keeps no reference to `scene`.
+    UpdateStats update_scene(const Scene& scene, SceneUpdate how);
 
     /// Bytes of the tracer's own data for the current scene and its last batch (per-frame
     /// structures, per-ray buffers; Embree: the device's peak since set_scene()), for the
@@ -67,6 +93,9 @@ class Tracer {
     }
 
   protected:
+    /// update_scene() without the clock. By default set_scene(), `rebuilt`.
+    virtual UpdateWork update(const Scene& scene, SceneUpdate how);
+
     /// trace() with `detail` reset (levels empty, one zeroed RayStats per ray) or null.
     virtual TraceStats trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                    TraceDetail* detail) = 0;
@@ -93,5 +122,15 @@ EmbreeMode parse_embree_mode(std::string_view name);
 
 /// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
 std::vector<Triangle> gather_triangles(const Scene& scene);
+
+/// The same into `out`, which keeps its storage when the triangle count does not change.
+void gather_triangles(const Scene& scene, std::vector<Triangle>& out);
+
+std::string_view scene_update_name(SceneUpdate how);
+
+/// "refit" -> SceneUpdate::refit; throws InputError listing the known names.
+SceneUpdate parse_scene_update(std::string_view name);
+
+std::string_view update_work_name(UpdateWork work);
 
 }  // namespace edacrt

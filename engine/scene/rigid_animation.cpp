@@ -45,7 +45,8 @@ struct Reader {
     void only_fields(const json& j, const std::string& where,
                      std::initializer_list<const char*> known) const {
         if (!j.is_object()) fail(where, "expected an object {...}");
-        for (const auto& [name, value] : j.items()) {
+        for (const auto& item : j.items()) {
+            const std::string& name = item.key();
             if (std::find_if(known.begin(), known.end(),
                              [&](const char* k) { return name == k; }) != known.end())
                 continue;

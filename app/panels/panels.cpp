@@ -49,6 +49,12 @@ void cell_text(const char* format, ...) {
     ImGui::TextUnformatted(text);
 }
 
+void error_text(const std::string& text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+    ImGui::TextWrapped("%s", text.c_str());
+    ImGui::PopStyleColor();
+}
+
 int take_clipped_cells() { return std::exchange(clipped_cells, 0); }
 
 void draw_controls(ViewerState& s) {

@@ -27,6 +27,9 @@ void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const 
 /// Where image pixel (x, y) of a width x height image appears in the window.
 ImVec2 image_to_window(const ViewerState& state, float x, float y, int width, int height);
 
+/// An error, wrapped, in red.
+void error_text(const std::string& text);
+
 /// A table cell's text; counts cells too narrow for it (the layout check reports them).
 void cell_text(const char* format, ...) IM_FMTARGS(1);
 /// Cells clipped since the last call.

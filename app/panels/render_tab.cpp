@@ -67,9 +67,7 @@ void draw_render_tab(ViewerState& s) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("render size as a fraction of the image region's pixels");
     if (!s.resolution_error.empty()) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
-        ImGui::TextWrapped("%s", s.resolution_error.c_str());
-        ImGui::PopStyleColor();
+        error_text(s.resolution_error);
     }
     ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
     tooltip("worker threads of the renderer and the tracer (0: all cores)");
@@ -105,9 +103,7 @@ void draw_render_tab(ViewerState& s) {
 
     ImGui::Separator();
     if (!s.render_error.empty()) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
-        ImGui::TextWrapped("%s", s.render_error.c_str());
-        ImGui::PopStyleColor();
+        error_text(s.render_error);
     } else if (s.frame) {
         const Frame& f = *s.frame;
         const double mrays = f.total.trace_seconds > 0

@@ -33,9 +33,7 @@ void draw_scene_tab(ViewerState& s) {
     ImGui::SameLine();
     if (ImGui::Button("Load")) s.pending_loads.push_back(s.scene_path);
     if (!s.scene_error.empty()) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
-        ImGui::TextWrapped("%s", s.scene_error.c_str());
-        ImGui::PopStyleColor();
+        error_text(s.scene_error);
     }
     if (s.scene) {
         ImGui::Separator();

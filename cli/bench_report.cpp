@@ -9,6 +9,8 @@
 #include <limits>
 #include <thread>
 
+#include "text_table.h"
+
 namespace edacrt::cli {
 namespace {
 
@@ -44,12 +46,7 @@ std::string optional_text(std::optional<double> value, const char* pattern) {
     return value ? format(pattern, *value) : "n/a";
 }
 
-struct Column {
-    const char* title;
-    int width;  // in the stdout table; text columns are left-aligned, numbers right-aligned
-    bool text_column;
-    std::string (*text)(const Row&);
-};
+using Column = cli::Column<Row>;
 
 const Column kColumns[] = {
     {"scene", 11, true, [](const Row& r) { return r.run->scene; }},
@@ -84,11 +81,6 @@ std::vector<Column> columns(bool sweep) {
     std::vector<Column> all(std::begin(kColumns), std::end(kColumns));
     if (sweep) all.push_back(kScalingColumn);
     return all;
-}
-
-std::string pad(std::string text, int width, bool left) {
-    const std::string fill(std::size_t(std::max(0, width - int(text.size()))), ' ');
-    return left ? text + fill : fill + text;
 }
 
 std::string cpu_model() {
@@ -145,32 +137,14 @@ std::vector<Row> make_rows(const SetRun& run, const SetRun* single_thread) {
     return rows;
 }
 
-std::string table_header(bool sweep) {
-    std::string text;
-    for (const Column& c : columns(sweep)) text += pad(c.title, c.width, c.text_column) + " ";
-    return text + "\n";
-}
+std::string table_header(bool sweep) { return text_table_header<Row>(columns(sweep)); }
 
 std::string table_row(const Row& row, bool sweep) {
-    std::string text;
-    for (const Column& c : columns(sweep)) text += pad(c.text(row), c.width, c.text_column) + " ";
-    return text + "\n";
+    return text_table_row<Row>(columns(sweep), row);
 }
 
 std::string markdown_table(const std::vector<Row>& rows, bool sweep) {
-    std::string text = "|", rule = "|";
-    for (const Column& c : columns(sweep)) {
-        text += std::string(" ") + c.title + " |";
-        rule += c.text_column ? "---|" : "---:|";
-    }
-    text += "\n" + rule + "\n";
-    for (const Row& row : rows) {
-        if (!row.shown) continue;
-        text += "|";
-        for (const Column& c : columns(sweep)) text.append(" ").append(c.text(row)).append(" |");
-        text += "\n";
-    }
-    return text;
+    return cli::markdown_table<Row>(columns(sweep), rows, [](const Row& r) { return r.shown; });
 }
 
 nlohmann::json machine_json() {

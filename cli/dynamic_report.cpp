@@ -6,6 +6,7 @@
 #include <map>
 
 #include "bench_report.h"
+#include "text_table.h"
 
 namespace edacrt::cli {
 namespace {
@@ -23,12 +24,7 @@ std::string agreement_text(const DynamicMethodRun& m) {
     return a.tolerated ? "ok (" + std::to_string(a.tolerated) + " tol)" : "ok";
 }
 
-struct Column {
-    const char* title;
-    int width;  // in the stdout table; text columns are left-aligned, numbers right-aligned
-    bool text_column;
-    std::string (*text)(const DynamicRow&);
-};
+using Column = cli::Column<DynamicRow>;
 
 const Column kColumns[] = {
     {"scene", 8, true, [](const DynamicRow& r) { return r.run->scene; }},
@@ -49,11 +45,6 @@ const Column kColumns[] = {
      }},
     {"agreement", 10, true, [](const DynamicRow& r) { return agreement_text(*r.method); }},
 };
-
-std::string pad(std::string text, int width, bool left) {
-    const std::string fill(std::size_t(std::max(0, width - int(text.size()))), ' ');
-    return left ? text + fill : fill + text;
-}
 
 std::vector<double> frame_seconds(const DynamicMethodRun& m) {
     std::vector<double> frame(m.update_seconds.size());
@@ -84,31 +75,14 @@ std::vector<DynamicRow> dynamic_rows(const DynamicSetRun& run) {
     return rows;
 }
 
-std::string dynamic_table_header() {
-    std::string text;
-    for (const Column& c : kColumns) text += pad(c.title, c.width, c.text_column) + " ";
-    return text + "\n";
-}
+std::string dynamic_table_header() { return text_table_header<DynamicRow>(kColumns); }
 
 std::string dynamic_table_row(const DynamicRow& row) {
-    std::string text;
-    for (const Column& c : kColumns) text += pad(c.text(row), c.width, c.text_column) + " ";
-    return text + "\n";
+    return text_table_row<DynamicRow>(kColumns, row);
 }
 
 std::string dynamic_markdown_table(const std::vector<DynamicRow>& rows) {
-    std::string text = "|", rule = "|";
-    for (const Column& c : kColumns) {
-        text += std::string(" ") + c.title + " |";
-        rule += c.text_column ? "---|" : "---:|";
-    }
-    text += "\n" + rule + "\n";
-    for (const DynamicRow& row : rows) {
-        text += "|";
-        for (const Column& c : kColumns) text.append(" ").append(c.text(row)).append(" |");
-        text += "\n";
-    }
-    return text;
+    return markdown_table<DynamicRow>(kColumns, rows, [](const DynamicRow&) { return true; });
 }
 
 nlohmann::json dynamic_row_json(const DynamicRow& row) {

@@ -24,14 +24,30 @@ std::string exact(float v) {
     return text;
 }
 
+/// %.17g: seventeen significant digits read back to the same double.
+std::string exact(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
 std::string exact(const glm::vec3& v) { return exact(v.x) + "," + exact(v.y) + "," + exact(v.z); }
 
 }  // namespace
 
 std::string render_command_line(const ViewCommand& v) {
     const RenderSettings& s = v.settings;
-    std::string line = "edacrt render --scene " + quoted(v.scene) + " --method " +
-                       std::string(method_name(v.method));
+    std::string line = "edacrt render";
+    if (!v.animated || v.animation.empty())
+        line += (v.animated ? " --animate " : " --scene ") + quoted(v.scene);
+    else
+        line += " --scene " + quoted(v.scene) + " --animate " + quoted(v.animation);
+    if (v.animated) {
+        line +=
+            " --time " + exact(v.time) + " --update " + std::string(scene_update_name(v.update));
+        if (v.shutter > 0.0) line += " --shutter " + exact(v.shutter);
+    }
+    line += " --method " + std::string(method_name(v.method));
     if (v.method == Method::embree && v.embree_mode != kDefaultEmbreeMode)
         line += " --embree-mode " + std::string(embree_mode_name(v.embree_mode));
     line += " --integrator " + std::string(integrator_name(s.integrator));

@@ -1,7 +1,7 @@
 #pragma once
 // The `edacrt render` command that reproduces the viewer's view: scene, method, integrator,
 // samples, size, seed, exact camera (floats printed so they read back bit for bit), tone map
-// and every EDACRT parameter that differs from its default.
+// every EDACRT parameter that differs from its default, and the animation time.
 #include <string>
 
 #include "render/render_settings.h"
@@ -11,7 +11,14 @@
 namespace edacrt::app {
 
 struct ViewCommand {
-    std::string scene;
+    std::string scene;  // a scene, or an animation that names its own geometry (FILE.json)
+    // An animation: its spec (of the scene, or empty when `scene` is the animation), the time
+    // shown, how the tracer takes frames, the motion blur shutter (0: none).
+    bool animated = false;
+    std::string animation;
+    double time = 0.0;
+    SceneUpdate update = SceneUpdate::refit;
+    double shutter = 0.0;
     Method method = Method::edacrt;
     EmbreeMode embree_mode = kDefaultEmbreeMode;
     EdacrtParams params;

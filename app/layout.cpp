@@ -23,7 +23,12 @@ Layout compute_layout(const LayoutOptions& o) {
             ? std::clamp(0.4f * height, std::min(14.0f * o.em, 0.6f * height), 0.6f * height)
             : std::min(o.title_height, 0.6f * height);
     layout.analysis = {controls, height - analysis, right, analysis};
-    layout.image = {controls, 0.0f, right, height - analysis};
+    // The timeline: one row of widgets with the window's padding, while the image keeps at
+    // least a third of the height.
+    const float timeline =
+        o.animated ? std::min(2.0f * o.title_height, (height - analysis) / 3.0f) : 0.0f;
+    layout.image = {controls, 0.0f, right, height - analysis - timeline};
+    if (o.animated) layout.timeline = {controls, layout.image.bottom(), right, timeline};
     return layout;
 }
 

@@ -31,12 +31,14 @@ struct LayoutOptions {
     float title_height = 19.0f;         // a collapsed panel's title bar
     bool panels_hidden = false;         // Tab / F1: the image fills the window
     bool analysis_open = true;          // collapsed: only its title bar stays
+    bool animated = false;              // a timeline bar under the image
 };
 
 struct Layout {
     Rect controls;  // left column, full height
     Rect analysis;  // below the image, right of the controls
     Rect image;     // the rest; never empty while the window is not
+    Rect timeline;  // under the image, as wide (animated scenes; else empty)
 };
 
 Layout compute_layout(const LayoutOptions& options);

@@ -1,6 +1,7 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
 
+#include "scene/animation.h"
 #include "viewer.h"
 
 int main(int argc, char** argv) {
@@ -23,6 +24,23 @@ int main(int argc, char** argv) {
     app.add_flag("--hide-panels", o.hide_panels, "start with the panels hidden (Tab shows them)");
     app.add_option("--bookmarks", o.bookmarks,
                    "camera bookmarks file (default: $XDG_CONFIG_HOME/edacrt/bookmarks.json)");
+    const std::string group = "Animation";
+    app.add_option("--animate", o.animate,
+                   "animate the scene (the scene may also be an animation file):\n" +
+                       edacrt::animation_help())
+        ->group(group);
+    app.add_option("--time", o.time, "show the animation at this time in seconds")->group(group);
+    app.add_flag("--play", o.play, "start playing (Space plays or pauses)")->group(group);
+    app.add_option("--speed", o.speed, "animation seconds per second (0.05 to 4)")
+        ->capture_default_str()
+        ->group(group);
+    app.add_option("--update", o.update,
+                   "how bvh and embree take each frame: rebuild, dynamic, refit")
+        ->capture_default_str()
+        ->group(group);
+    app.add_option("--shutter", o.shutter,
+                   "motion blur: seconds of shutter around the frame's time (0: none)")
+        ->group(group);
     CLI11_PARSE(app, argc, argv);
     return edacrt::app::run_viewer(o);
 }

@@ -6,13 +6,13 @@
 #include <chrono>
 
 #include "render/renderer.h"
+#include "render/sampler.h"
 
 namespace edacrt::app {
 namespace {
 
-bool same_tracer(const RenderRequest& a, const RenderRequest& b) {
-    return a.scene == b.scene && a.method == b.method && a.embree_mode == b.embree_mode &&
-           a.params == b.params;
+bool same_method(const RenderRequest& a, const RenderRequest& b) {
+    return a.method == b.method && a.embree_mode == b.embree_mode && a.params == b.params;
 }
 
 }  // namespace
@@ -67,14 +67,16 @@ bool RenderWorker::wait_idle(std::chrono::milliseconds timeout) const {
 }
 
 void RenderWorker::run() {
-    std::shared_ptr<const RenderRequest> current, traced;  // traced: what `tracer` was built for
+    std::shared_ptr<const RenderRequest> current, traced;  // traced: what `tracer` was made for
+    std::shared_ptr<const Scene> geometry;                 // what `tracer` and `renderer` hold now
     std::uint64_t id = 0;
     std::unique_ptr<Tracer> tracer;
     std::unique_ptr<Renderer> renderer;
     std::unique_ptr<tbb::task_arena> arena;
     std::shared_ptr<const TraceDetail> detail;
-    double seconds = 0.0;
-    bool fresh = false;  // a request not yet started
+    double seconds = 0.0, first_pass_seconds = 0.0;
+    UpdateStats pending_update;  // how the tracer took the current request's scene
+    bool fresh = false;          // a request not yet started
     for (;;) {
         {
             std::unique_lock lock(mutex_);
@@ -110,12 +112,26 @@ void RenderWorker::run() {
                 const int all = tbb::task_arena::automatic;  // a copy: no ODR use of the member
                 arena =
                     std::make_unique<tbb::task_arena>(request.threads > 0 ? request.threads : all);
-                if (!tracer || !traced || !same_tracer(*traced, request)) {
+                // The tracer takes the request's scene: from scratch for another method or
+                // scene, as the request says for another frame of the same animation.
+                UpdateStats update;
+                if (!tracer || !traced || !same_method(*traced, request) ||
+                    (geometry != request.scene &&
+                     !(request.animation && request.animation == traced->animation))) {
                     tracer.reset();
+                    geometry.reset();
                     tracer = make_tracer(request.method, request.params, request.embree_mode);
-                    arena->execute([&] { tracer->set_scene(*request.scene); });
-                    traced = current;
+                    // An animation's first frame is built as its later ones are taken (a
+                    // tree Embree can refit), which reports `rebuilt`.
+                    const SceneUpdate how =
+                        request.animation ? request.update : SceneUpdate::rebuild;
+                    arena->execute([&] { update = tracer->update_scene(*request.scene, how); });
+                } else if (geometry != request.scene) {
+                    arena->execute(
+                        [&] { update = tracer->update_scene(*request.scene, request.update); });
                 }
+                traced = current;
+                geometry = request.scene;
                 if (request.preview_scale > 1) {
                     RenderSettings small = request.settings;
                     small.width = std::max(1, small.width / request.preview_scale);
@@ -127,18 +143,30 @@ void RenderWorker::run() {
                     auto frame = std::make_shared<Frame>();
                     frame->request = id;
                     frame->preview = true;
+                    frame->time = request.time;
                     frame->image = preview.film().mean();
                     frame->spp = 1;
                     publish(std::move(frame));
                 }
                 renderer = std::make_unique<Renderer>(*request.scene, *tracer, request.camera,
                                                       request.settings);
+                pending_update = update;
+            }
+            const int passes = renderer->film().passes();
+            if (request.animation && request.shutter > 0.0) {
+                // Motion blur: this pass at its own time of the shutter, added to the film.
+                auto scene = request.animation->at(
+                    shutter_time(request.time, request.shutter, std::uint32_t(passes)));
+                if (scene != geometry) {
+                    arena->execute([&] { tracer->update_scene(*scene, request.update); });
+                    renderer->scene_changed(*scene, true);
+                    geometry = std::move(scene);
+                }
             }
             auto captured =
                 renderer->film().passes() == 0 ? std::make_shared<TraceDetail>() : nullptr;
             const auto start = std::chrono::steady_clock::now();
             bool done = false;
-            const int passes = renderer->film().passes();
             const int samples = passes == 0 ? 1
                                             : std::clamp(request.spp_target - passes, 1,
                                                          request.settings.samples_per_pass);
@@ -147,7 +175,10 @@ void RenderWorker::run() {
             if (!done) continue;  // cancelled: a new request is waiting
             seconds +=
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (captured) detail = std::move(captured);
+            if (captured) {
+                detail = std::move(captured);
+                first_pass_seconds = seconds;
+            }
             auto frame = std::make_shared<Frame>();
             frame->request = id;
             frame->image = renderer->film().mean();
@@ -155,6 +186,9 @@ void RenderWorker::run() {
             frame->seconds = seconds;
             frame->total = renderer->total();
             frame->detail = detail;
+            frame->time = request.time;
+            frame->update = pending_update;
+            frame->first_pass_seconds = first_pass_seconds;
             publish(std::move(frame));
         } catch (const std::exception& e) {
             auto frame = std::make_shared<Frame>();
@@ -165,6 +199,7 @@ void RenderWorker::run() {
             renderer.reset();
             tracer.reset();
             traced.reset();
+            geometry.reset();
         }
     }
 }

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <thread>
 
+#include "frame_pool.h"
 #include "render/image.h"
 #include "render/render_settings.h"
 #include "render/wavefront.h"
@@ -31,6 +32,14 @@ struct RenderRequest {
     int spp_target = 1024;
     int threads = 0;        // 0: all
     int preview_scale = 4;  // the first pass at 1/preview_scale of the resolution (1: none)
+    // An animation: `scene` is its frame at `time` seconds (FramePool::at), and the tracer
+    // takes each new frame as `update` says. With `shutter` > 0 the passes are rendered at
+    // times spread over [time - shutter/2, time + shutter/2] (the first at `time`) and
+    // average into motion blur.
+    std::shared_ptr<FramePool> animation;
+    double time = 0.0;
+    double shutter = 0.0;
+    SceneUpdate update = SceneUpdate::refit;
 
     bool operator==(const RenderRequest&) const = default;
 };
@@ -46,6 +55,12 @@ struct Frame {
     // Statistics of the first full-resolution pass's camera rays (per level and per pixel).
     std::shared_ptr<const TraceDetail> detail;
     std::string error;  // why the request could not be rendered (bad parameters)
+    // The request's animation time, and how the tracer took its scene before the first pass
+    // (set_scene: rebuilt; a frame of the animation: as RenderRequest::update says; the scene
+    // it already had: none, 0 s).
+    double time = 0.0;
+    UpdateStats update;
+    double first_pass_seconds = 0.0;  // the first full-resolution pass (1 spp)
 };
 
 class RenderWorker {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "scene/scene_paths.h"
 
@@ -14,13 +15,14 @@ namespace fs = std::filesystem;
 constexpr const char* kBuiltins[] = {"builtin:cornell", "builtin:sphere:subdiv=5",
                                      "builtin:cube:n=8"};
 
-/// Every .obj under `dir`, sorted; an unreadable directory gives what could be read.
-std::vector<std::string> obj_files(const fs::path& dir) {
+/// Every file under `dir` whose name ends with `suffix`, sorted; an unreadable directory gives
+/// what could be read.
+std::vector<std::string> files_ending(const fs::path& dir, std::string_view suffix) {
     std::vector<std::string> list;
     std::error_code error;
     for (fs::recursive_directory_iterator it(dir, error), end; !error && it != end;
          it.increment(error))
-        if (it->path().extension() == ".obj") list.push_back(it->path().string());
+        if (it->path().filename().string().ends_with(suffix)) list.push_back(it->path().string());
     std::sort(list.begin(), list.end());
     return list;
 }
@@ -74,9 +76,13 @@ bool add_public_scenes(const fs::path& assets, const fs::path& scenes, SceneCata
 
 SceneCatalog scene_catalog(const fs::path& assets, const fs::path& scenes) {
     SceneCatalog catalog;
-    for (const std::string& file : obj_files(assets)) catalog.entries.push_back({file, file, true});
+    for (const std::string& file : files_ending(assets, ".obj"))
+        catalog.entries.push_back({file, file, true});
+    // Bundled animation files (scene/rigid_animation.h) name their own meshes.
+    for (const std::string& file : files_ending(assets, ".anim.json"))
+        catalog.entries.push_back({file + " (animated)", file, true});
     if (!add_public_scenes(assets, scenes, catalog))
-        for (const std::string& file : obj_files(scenes))
+        for (const std::string& file : files_ending(scenes, ".obj"))
             catalog.entries.push_back({file, file, true});
     for (const char* builtin : kBuiltins) catalog.entries.push_back({builtin, builtin, true});
     return catalog;

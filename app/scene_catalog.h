@@ -1,6 +1,6 @@
 #pragma once
-// The viewer's scene list: the OBJ files bundled in assets/, the public scenes of
-// assets/scenes.json found in the scenes folder (those absent listed too, so the list can say
+// The viewer's scene list: the OBJ files and animation files bundled in assets/, the public scenes
+// of assets/scenes.json found in the scenes folder (those absent listed too, so the list can say
 // how to get them), and the built-in scenes. No GL: tested headless.
 #include <filesystem>
 #include <string>
@@ -15,7 +15,8 @@ struct CatalogEntry {
 };
 
 struct SceneCatalog {
-    // Bundled (sorted), then the public scenes (manifest order), then the built-ins.
+    // Bundled scenes (sorted), bundled animation files (*.anim.json), then the public scenes
+    // (manifest order), then the built-ins.
     std::vector<CatalogEntry> entries;
     std::string hint;  // "N more scenes: run scripts/get-scenes ..." or empty
     int missing = 0;   // public scenes absent from the scenes folder

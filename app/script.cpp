@@ -12,12 +12,13 @@ struct Verb {
     std::string_view name;
     std::size_t args;
 };
-constexpr Verb kVerbs[] = {{"set", 2},        {"view", 1},        {"wait-spp", 1},
-                           {"frames", 1},     {"orbit", 2},       {"quit", 0},
-                           {"screenshot", 1}, {"tab", 1},         {"panels", 1},
-                           {"analysis", 1},   {"help", 1},        {"check-layout", 0},
-                           {"save-view", 1},  {"save-linear", 1}, {"write-command", 1},
-                           {"record", 0},     {"pick", 2},        {"wait-analysis", 0}};
+constexpr Verb kVerbs[] = {{"set", 2},        {"view", 1},         {"wait-spp", 1},
+                           {"frames", 1},     {"orbit", 2},        {"quit", 0},
+                           {"screenshot", 1}, {"tab", 1},          {"panels", 1},
+                           {"analysis", 1},   {"help", 1},         {"check-layout", 0},
+                           {"save-view", 1},  {"save-linear", 1},  {"write-command", 1},
+                           {"record", 0},     {"pick", 2},         {"wait-analysis", 0},
+                           {"compare", 0},    {"wait-compare", 0}, {"wait-played", 1}};
 
 }  // namespace
 

@@ -1,7 +1,9 @@
 #pragma once
 // The viewer's --script: UI actions, one per line, for headless tests and demos.
 //   set KEY VALUE      a UI parameter (method, spp, ...; every EDACRT flag without "--",
-//                      e.g. set filter-skip off; set preset paper)
+//                      e.g. set filter-skip off; set preset paper); animation: animate SPEC,
+//                      time T, play 0|1, speed X, loop 0|1, update MODE, shutter S,
+//                      play-scale 1|2|4
 //   view NAME          render | box | triangle | depth | order
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   frames N           let N frames pass
@@ -18,6 +20,10 @@
 //   record             record the view's recursion (recursion explorer)
 //   pick X Y           follow the camera ray under window position X, Y (traversal debugger)
 //   wait-analysis      until the recording or the followed ray is ready
+//   compare            time every method on the view (Statistics, Frames)
+//   wait-compare       until the comparison is done
+//   wait-played N      until N frames of the animation were rendered since it was loaded
+//                      (set play 1 first; set time T shows time T, paused)
 //   screenshot FILE    save the window as PNG
 //   quit
 // '#' starts a comment. Errors name the line.

@@ -84,6 +84,26 @@ void ScriptRunner::step(ViewerState& s, int shown_spp, std::string& screenshot, 
                 analysis_asked_ = s.analysis_running || s.analysis_requested;
                 return;
             }
+        } else if (c.verb == "compare") {
+            s.compare_requested = true;
+            compare_asked_ = true;
+            ++next_;
+            return;  // started in the next frame
+        } else if (c.verb == "wait-compare") {
+            if (compare_asked_ || s.comparing || s.compare_requested) {
+                compare_asked_ = s.comparing || s.compare_requested;
+                return;
+            }
+        } else if (c.verb == "wait-played") {
+            if (!waiting_) wait_start_ = Clock::now();
+            waiting_ = true;
+            if (s.playback.history.size() < std::size_t(std::stoi(c.args[0]))) {
+                if (!s.playback.frames) fail("wait-played needs an animated scene");
+                if (Clock::now() - wait_start_ > std::chrono::minutes(5))
+                    fail("timed out waiting for " + c.args[0] + " played frames");
+                return;
+            }
+            waiting_ = false;
         } else if (c.verb == "screenshot") {
             screenshot = c.args[0];
             ++next_;

@@ -28,6 +28,7 @@ class ScriptRunner {
     std::vector<ScriptCommand> commands_;
     std::optional<glm::vec2> pick_;
     bool analysis_asked_ = false;
+    bool compare_asked_ = false;
     std::size_t next_ = 0;
     int frames_left_ = -1;
     bool waiting_ = false;

@@ -5,6 +5,7 @@
 
 #include "render/film.h"
 #include "util/error.h"
+#include "viewer_jobs.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -63,6 +64,39 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
     else if (key == "step") {
         s.stepping = true;
         s.step = int(number());
+    } else if (key == "animate") {
+        load_into(s, s.scene_path, {}, value, true);
+        if (!s.scene_error.empty()) throw InputError(s.scene_error);
+    } else if (key == "time" || key == "play" || key == "speed" || key == "loop" ||
+               key == "update" || key == "shutter" || key == "play-scale") {
+        Playback& a = s.playback;
+        if (!a.frames) throw InputError("'" + key + "' needs an animated scene");
+        if (key == "time") {
+            a.playing = false;
+            seek(s, number());
+            if (!a.error.empty()) throw InputError(a.error);
+        } else if (key == "play") {
+            a.playing = number() != 0;
+            a.waited = 0.0;
+        } else if (key == "speed") {
+            const double speed = number();
+            if (!(speed >= 0.05 && speed <= 4.0)) throw InputError("speed must be from 0.05 to 4");
+            a.speed = float(speed);
+        } else if (key == "play-scale") {
+            const double scale = number();
+            if (scale != 1 && scale != 2 && scale != 4) throw InputError("play-scale is 1, 2 or 4");
+            a.play_scale = int(scale);
+        } else if (key == "loop") {
+            a.loop = number() != 0;
+        } else if (key == "update") {
+            a.update = parse_scene_update(value);
+        } else {  // shutter: seconds of motion blur, 0 for none
+            const double shutter = number();
+            if (!(shutter >= 0.0 && shutter <= 1e3))
+                throw InputError("shutter must be from 0 to 1000 seconds");
+            a.motion_blur = shutter > 0.0;
+            if (shutter > 0.0) a.shutter = float(shutter);
+        }
     } else
         throw InputError("unknown setting '" + key + "'");
 }

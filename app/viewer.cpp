@@ -94,6 +94,14 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
     if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
     if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+    if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s
+        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) {
+            s.playback.playing = !s.playback.playing;
+            s.playback.waited = 0.0;
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) seek(s, s.playback.time - 1.0 / 24);
+        if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) seek(s, s.playback.time + 1.0 / 24);
+    }
 }
 
 /// The region in framebuffer pixels: x, y from the top-left, width, height.
@@ -122,9 +130,35 @@ int run_viewer(const ViewerOptions& options) {
         return 1;
     }
     s.panels_hidden = options.hide_panels;
-    load_into(s, options.scene, options.camera);
+    try {
+        s.playback.update = parse_scene_update(options.update);
+        if (!(options.shutter >= 0.0 && options.shutter <= 1e3))
+            throw InputError("--shutter must be a number of seconds from 0 to 1000");
+        if (!(options.speed >= 0.05 && options.speed <= 4.0))
+            throw InputError("--speed must be from 0.05 to 4");
+        if (!std::isfinite(options.time)) throw InputError("--time must be finite");
+    } catch (const std::exception& e) {
+        std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        return 1;
+    }
+    s.playback.motion_blur = options.shutter > 0.0;
+    if (options.shutter > 0.0) s.playback.shutter = float(options.shutter);
+    s.playback.speed = float(options.speed);
+    s.playback.playing = options.play;
+    load_into(s, options.scene, options.camera, options.animate);
     if (!s.scene) {
         std::cerr << "edacrt_viewer: error: " << s.scene_error << "\n";
+        return 1;
+    }
+    if (s.playback.frames) {
+        seek(s, options.time);
+        if (!s.playback.error.empty()) {
+            std::cerr << "edacrt_viewer: error: " << s.playback.error << "\n";
+            return 1;
+        }
+    } else if (!options.animate.empty() || options.play || options.time != 0.0) {
+        std::cerr << "edacrt_viewer: error: --time and --play need an animated scene "
+                     "(--animate, or an animation file)\n";
         return 1;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
@@ -207,7 +241,8 @@ int run_viewer(const ViewerOptions& options) {
             ImGui::NewFrame();
             const ImGuiIO& io = ImGui::GetIO();
             s.layout = compute_layout({io.DisplaySize.x, io.DisplaySize.y, ImGui::GetFontSize(),
-                                       ImGui::GetFrameHeight(), s.panels_hidden, s.analysis_open});
+                                       ImGui::GetFrameHeight(), s.panels_hidden, s.analysis_open,
+                                       bool(s.playback.frames)});
             const Rect& image = s.layout.image;
             const auto in_image = [&](ImVec2 p) {
                 return p.x >= image.x && p.y >= image.y && p.x < image.right() &&
@@ -254,13 +289,17 @@ int run_viewer(const ViewerOptions& options) {
                             {frame->seconds, frame->spp,
                              relative_rms_change(frame->image, s.frame->image)});
                     s.frame = frame;
+                    record_frame_time(s, *frame, submitted.method);
                 }
             }
+            // Playing: the next frame once this one's first full pass is shown.
+            advance_playback(s, s.frame && s.frame->request == request_id && !s.frame->preview, dt);
             s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
             s.placements.clear();
             s.recursion_shown = false;
             draw_controls(s);
             draw_analysis(s, heat_max);
+            draw_timeline(s);
             draw_help(s);
             draw_heat_readout(s);
 
@@ -281,9 +320,10 @@ int run_viewer(const ViewerOptions& options) {
                 }
             }
             s.command_line = render_command_line(
-                {s.scene_path, submitted.method, submitted.embree_mode, submitted.params,
-                 submitted.settings, submitted.camera, submitted.spp_target, s.exposure,
-                 std::array{"clamp", "reinhard", "aces"}[std::size_t(s.tone_map)],
+                {s.scene_path, bool(submitted.animation), s.animation_spec, submitted.time,
+                 submitted.update, submitted.shutter, submitted.method, submitted.embree_mode,
+                 submitted.params, submitted.settings, submitted.camera, submitted.spp_target,
+                 s.exposure, std::array{"clamp", "reinhard", "aces"}[std::size_t(s.tone_map)],
                  timestamped(s, ".png")});
 
             // The render pauses while methods are compared: their timings get the cores.
@@ -316,9 +356,18 @@ int run_viewer(const ViewerOptions& options) {
             if (s.compare_requested && !comparison.valid()) {
                 s.compare_requested = false;
                 worker.set_paused(true);
-                comparison = std::async(std::launch::async, compare_methods, s.scene,
+                // An animation's frame is also refitted from the one 1/24 s before.
+                std::shared_ptr<const Scene> previous;
+                if (s.playback.frames) try {
+                        previous = s.playback.frames->at(std::max(0.0, s.playback.time - 1.0 / 24));
+                        s.playback.compared_time = s.playback.time;
+                    } catch (const std::exception& e) {
+                        s.playback.error = e.what();
+                    }
+                comparison = std::async(std::launch::async, compare_methods, s.scene, previous,
                                         submitted.camera, submitted.settings.width,
                                         submitted.settings.height, s.ui.params, &worker);
+                s.comparing = true;
             }
             if (comparison.valid() &&
                 comparison.wait_for(std::chrono::seconds(0)) == std::future_status::ready)

@@ -19,6 +19,13 @@ struct ViewerOptions {
     cli::CameraOptions camera;  // --eye, --look-at, --up, --fov (as in edacrt render)
     bool hide_panels = false;   // start with the image alone (Tab / F1 toggles)
     std::string bookmarks;      // the bookmarks file; default: Bookmarks::default_path()
+    // Animation (as edacrt render's flags): the spec, the time shown first, whether it plays.
+    std::string animate;
+    double time = 0.0;
+    bool play = false;
+    double speed = 1.0;
+    std::string update = "refit";
+    double shutter = 0.0;  // > 0: motion blur
 };
 
 /// Opens the window and runs until it is closed (or the frames / script end). Returns the

@@ -21,19 +21,45 @@ using Clock = std::chrono::steady_clock;
 
 /// Loads a scene into the state; on failure keeps the previous one and shows the error. The
 /// camera flags override the scene's view (cli/camera_options.h), for the first scene only.
-void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions& flags) {
+void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions& flags,
+               const std::string& animation, bool keep_view) {
     try {
-        auto scene = std::make_shared<Scene>(load_scene(spec));
-        if (scene->triangle_count() == 0) throw InputError(spec + ": the scene has no triangles");
-        s.scene_camera = default_camera(*scene);
-        s.camera.reset(cli::choose_camera(*scene, flags));
+        // An animation file or OBJ sequence names its own geometry.
+        const bool own = animation_has_geometry(spec);
+        AnimatedScene animated = load_animated_scene(own ? "" : spec, own ? spec : animation);
+        if (animated.scene.triangle_count() == 0)
+            throw InputError(spec + ": the scene has no triangles");
+        Playback playback;
+        std::shared_ptr<const Scene> scene;
+        if (animated.animation) {
+            playback.frames = std::make_shared<FramePool>(std::move(animated));
+            scene = playback.frames->at(0.0);
+        } else {
+            scene = std::make_shared<const Scene>(std::move(animated.scene));
+        }
+        if (!keep_view) {
+            s.scene_camera = default_camera(*scene);
+            s.camera.reset(cli::choose_camera(*scene, flags));
+        }
         s.scene_label =
             scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
+        if (playback.frames) s.scene_label += ", animated (" + playback.frames->spec() + ")";
         for (const std::string& w : scene->warnings)
             std::cerr << "edacrt_viewer: warning: " << w << "\n";
+        // Playback settings carry over; the frames, the time and the history start over.
+        playback.speed = s.playback.speed;
+        playback.play_scale = s.playback.play_scale;
+        playback.loop = s.playback.loop;
+        playback.motion_blur = s.playback.motion_blur;
+        playback.shutter = s.playback.shutter;
+        playback.update = s.playback.update;
+        playback.playing = playback.frames && s.playback.playing;
+        s.playback = std::move(playback);
         s.scene = std::move(scene);
         s.scene_error.clear();
         s.scene_path = spec;
+        s.animation_spec = own ? "" : animation;
+        s.animation_field = s.playback.frames && !own ? s.playback.frames->spec() : "";
     } catch (const std::exception& e) {
         s.scene_error = e.what();
     }
@@ -62,6 +88,17 @@ RenderRequest make_request(const ViewerState& s, int width, int height) {
     r.settings.wavefront_paths = std::size_t(1) << 18;
     r.spp_target = s.ui.spp_target;
     r.threads = s.ui.threads;
+    if (const Playback& p = s.playback; p.frames) {
+        r.animation = p.frames;
+        r.time = p.time;
+        r.shutter = p.motion_blur ? double(p.shutter) : 0.0;
+        r.update = p.update;
+        if (p.playing) {  // each frame is shown once its first pass is done: no preview
+            r.preview_scale = 1;
+            r.settings.width = std::max(1, r.settings.width / p.play_scale);
+            r.settings.height = std::max(1, r.settings.height / p.play_scale);
+        }
+    }
     return r;
 }
 
@@ -98,33 +135,47 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
 }
 
 /// Traces one camera ray per pixel with every method (the Statistics tab), once the render
-/// has paused (its pass in flight finished): the median of three traces after the tracer's
-/// set_scene, which the median includes (per-frame cost: nothing is kept between frames).
-std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
+/// has paused (its pass in flight finished): the median of three update + trace, where the
+/// update is set_scene() (per-frame cost: nothing is kept between frames) or, for a frame of
+/// an animation, also a refit or dynamic commit from the previous frame (untimed).
+std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
+                                          std::shared_ptr<const Scene> previous, Camera camera,
                                           int width, int height, EdacrtParams params,
                                           const RenderWorker* worker) {
     worker->wait_idle(std::chrono::seconds(60));
     const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
     std::vector<Hit> hits(rays.size());
+    std::vector<std::pair<Method, SceneUpdate>> variants;
+    for (Method method : {Method::edacrt, Method::dacrt, Method::bvh, Method::embree}) {
+        variants.emplace_back(method, SceneUpdate::rebuild);
+        if (previous && method == Method::bvh) variants.emplace_back(method, SceneUpdate::refit);
+        if (previous && method == Method::embree)
+            for (SceneUpdate how : {SceneUpdate::dynamic, SceneUpdate::refit})
+                variants.emplace_back(method, how);
+    }
+    variants.emplace_back(Method::naive, SceneUpdate::rebuild);
     std::vector<MethodTotals> out;
-    for (Method method :
-         {Method::edacrt, Method::dacrt, Method::bvh, Method::embree, Method::naive}) {
+    for (const auto& [method, how] : variants) {
         MethodTotals totals;
         totals.method = method;
+        totals.update = how;
         try {
             if (method == Method::naive &&
-                double(rays.size()) * double(scene->triangle_count()) > 5e9)
+                double(rays.size()) * double(scene->triangle_count()) > 1e9)
                 throw InputError("skipped: too slow here");
-            double times[3];
-            for (double& t : times) {
-                const auto start = Clock::now();
+            double times[3], updates[3];
+            for (int run = 0; run < 3; ++run) {
                 const auto tracer = make_tracer(method, params);
-                tracer->set_scene(*scene);
+                if (how != SceneUpdate::rebuild) tracer->update_scene(*previous, how);
+                const auto start = Clock::now();
+                updates[run] = tracer->update_scene(*scene, how).seconds;
                 totals.stats = tracer->trace(rays, hits, Query::closest);
-                t = std::chrono::duration<double>(Clock::now() - start).count();
+                times[run] = std::chrono::duration<double>(Clock::now() - start).count();
             }
             std::sort(std::begin(times), std::end(times));
+            std::sort(std::begin(updates), std::end(updates));
             totals.seconds = times[1];
+            totals.update_seconds = updates[1];
         } catch (const std::exception& e) {
             totals.error = e.what();
         }

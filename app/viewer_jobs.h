@@ -12,10 +12,14 @@
 
 namespace edacrt::app {
 
-/// Loads a scene into the state; on failure keeps the previous one and shows the error. The
-/// camera flags override the scene's view (cli/camera_options.h).
+/// Loads a scene into the state, animated as `animation` says (a spec of
+/// load_animated_scene(); an animation file or OBJ sequence may be given as `spec` itself), at
+/// time 0; on failure keeps the previous one and shows the error. The camera flags override
+/// the scene's view (cli/camera_options.h); `keep_view` keeps the current camera (a new
+/// animation of the same scene).
 void load_into(ViewerState& state, const std::string& spec,
-               const cli::CameraOptions& flags = cli::CameraOptions{});
+               const cli::CameraOptions& flags = cli::CameraOptions{},
+               const std::string& animation = "", bool keep_view = false);
 
 /// The request for the current settings; width x height: the image region in framebuffer
 /// pixels.
@@ -27,8 +31,10 @@ RenderRequest make_request(const ViewerState& state, int width, int height);
 bool fit_resolution(ViewerState& state, RenderRequest& request, const RenderRequest& submitted);
 
 /// Every method on one camera ray per pixel, once `worker` is idle (the caller pauses it):
-/// the median of three set_scene + trace.
-std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene, Camera camera,
+/// the median of three update + trace. The update is set_scene(); given the `previous` frame
+/// of an animation, also bvh's refit and embree's dynamic commit and refit from it.
+std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
+                                          std::shared_ptr<const Scene> previous, Camera camera,
                                           int width, int height, EdacrtParams params,
                                           const RenderWorker* worker);
 

@@ -3,9 +3,11 @@
 // into a new RenderRequest for the worker.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bookmarks.h"
+#include "frame_pool.h"
 #include "heatmap.h"
 #include "layout.h"
 #include "orbit_camera.h"
@@ -37,9 +39,12 @@ struct UiSettings {
 /// Per-method totals of the current view's camera rays, for comparison with the chosen method.
 struct MethodTotals {
     Method method;
-    double seconds = 0.0;
+    double seconds = 0.0;  // update + trace
     TraceStats stats;
     std::string error;
+    // How the tracer took the frame (an animation: also refit from the previous frame).
+    SceneUpdate update = SceneUpdate::rebuild;
+    double update_seconds = 0.0;
 };
 
 /// A recorded trace of the first pass's camera rays (the batch the statistics and heat maps
@@ -77,6 +82,37 @@ double relative_rms_change(const Image& a, const Image& b);
 std::vector<float> explorer_tint(const Analysis& analysis, std::int32_t node,
                                  std::int32_t hits_up_to);
 
+/// The animation being played (the timeline under the image) and the per-frame times it
+/// measured.
+struct Playback {
+    std::shared_ptr<FramePool> frames;  // null: a still scene
+    double time = 0.0;                  // seconds, in [0, duration]
+    bool playing = false;
+    float speed = 1.0f;  // animation seconds per second of wall clock
+    int play_scale = 2;  // while playing, frames render at 1/play_scale of the resolution
+    bool loop = true;    // at the end, start over (else stop)
+    bool motion_blur = false;
+    float shutter = 1.0f / 24.0f;  // seconds around `time` the passes are spread over
+    SceneUpdate update = SceneUpdate::refit;
+    std::string error;    // a frame that could not be made (playback stops)
+    double waited = 0.0;  // wall seconds since the last advance
+
+    // One point per rendered frame: how long the tracer took the frame and the first pass
+    // (1 spp) took, with the method that rendered it.
+    struct FrameTime {
+        double time;
+        Method method;
+        int width, height;  // of the frame (smaller while playing: play_scale)
+        UpdateWork work;
+        double update_seconds, pass_seconds;
+    };
+    std::vector<FrameTime> history;  // the newest kHistory
+    static constexpr std::size_t kHistory = 600;
+    // The other methods on the frame at `compared_time`, measured on request.
+    std::vector<MethodTotals> compared;
+    double compared_time = 0.0;
+};
+
 struct ViewerState {
     UiSettings ui;
     View view = View::render;
@@ -86,8 +122,11 @@ struct ViewerState {
 
     std::shared_ptr<const Scene> scene;
     std::string scene_label;
-    std::string scene_error;  // the last failed load (the previous scene stays)
-    std::string scene_path;   // the path field
+    std::string scene_error;      // the last failed load (the previous scene stays)
+    std::string scene_path;       // the path field
+    std::string animation_spec;   // how the scene is animated (empty: still); see Playback
+    std::string animation_field;  // the Scene tab's animation spec being edited
+    Playback playback;
     SceneCatalog scene_list;
     Camera scene_camera;  // for "reset view"
     OrbitCamera camera;
@@ -151,6 +190,21 @@ struct ViewerState {
     bool analysis_stale = false;   // recorded for another view, parameters or scene
     RenderRequest submitted;       // what the render in progress was asked for
 };
+
+/// Moves the animation to `t` (wrapped into [0, duration] when looping, else clamped; the
+/// end stops playback): the state's scene becomes that frame. On an error the scene stays,
+/// playback stops and the error shows.
+void seek(ViewerState& state, double t);
+
+/// Called once per UI frame, `dt` seconds after the last: while playing, once the shown frame
+/// has its first full-resolution pass (`frame_done`), advances the time by the wall clock
+/// since the last advance times the speed. Frames are never skipped half-rendered, so a slow
+/// method plays fewer frames, each at its real time.
+void advance_playback(ViewerState& state, bool frame_done, double dt);
+
+/// Adds a rendered frame's times to the playback history (once per request: its first
+/// full-resolution pass).
+void record_frame_time(ViewerState& state, const Frame& frame, Method method);
 
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
 /// exposure, scene, explorer level and node). Throws InputError.

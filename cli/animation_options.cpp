@@ -58,10 +58,18 @@ void add_animation_options(CLI::App& command, AnimationOptions& o) {
                     "its boxes refitted)")
         ->capture_default_str()
         ->group(group);
+    command
+        .add_option("--shutter", o.shutter,
+                    "motion blur: seconds the shutter stays open around each frame's time; the "
+                    "passes are rendered at times spread over it and averaged (0: none)")
+        ->capture_default_str()
+        ->group(group);
 }
 
 std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& out) {
     parse_scene_update(o.update);  // refuses an unknown mode before any work
+    if (!(o.shutter >= 0.0 && o.shutter <= 1e6))
+        throw InputError("--shutter must be a number of seconds from 0 to 1e6");
     if (o.frames.empty()) {
         const double t = o.time.value_or(0.0);
         if (!std::isfinite(t)) throw InputError("--time must be a finite number of seconds");

@@ -19,6 +19,7 @@
 #include "render/render_memory.h"
 #include "render/render_metadata.h"
 #include "render/renderer.h"
+#include "render/sampler.h"
 #include "stats_json.h"
 #include "util/error.h"
 
@@ -106,9 +107,13 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
                   const Camera& camera) {
     const Scene& scene = animated.scene;
     if (animated.animation) animated.animation->frame(frame.time, animated.scene);
-    const UpdateStats update = tracer.update_scene(scene, parse_scene_update(o.animation.update));
+    const SceneUpdate how = parse_scene_update(o.animation.update);
+    const UpdateStats update = tracer.update_scene(scene, how);
     const double prepare_seconds = update.seconds;
-    renderer.scene_changed();
+    renderer.scene_changed(scene);
+    // Motion blur: each pass at its own time of the shutter (render/sampler.h).
+    const bool blur = animated.animation && o.animation.shutter > 0.0;
+    double scene_time = frame.time;
     std::chrono::steady_clock::time_point start;
     // With only a time budget, render until it is spent.
     const int spp = o.time_budget_only() ? 1 << 20 : o.spp;
@@ -120,6 +125,14 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
     progress.begin("first pass");
     while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget)) {
         start = std::chrono::steady_clock::now();
+        const double t =
+            shutter_time(frame.time, o.animation.shutter, std::uint32_t(renderer.film().passes()));
+        if (blur && t != scene_time) {
+            animated.animation->frame(t, animated.scene);
+            tracer.update_scene(scene, how);
+            renderer.scene_changed(scene, true);
+            scene_time = t;
+        }
         renderer.render_pass(nullptr, nullptr,
                              std::min(settings.samples_per_pass, spp - renderer.film().passes()));
         elapsed += seconds_since(start);

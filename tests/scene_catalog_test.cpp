@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <fstream>
 
+#include "scene/animation.h"
+
 namespace edacrt::app {
 namespace {
 
@@ -90,9 +92,15 @@ TEST_F(SceneCatalogTest, NoScenesFolderMeansEveryPublicSceneIsMissing) {
 // or not in the scenes folder the tests use.
 TEST(SceneCatalog, TheRepositorysManifest) {
     const SceneCatalog catalog = scene_catalog(fs::path(EDACRT_SOURCE_DIR) / "assets");
-    int bundled = 0, public_scenes = 0, missing = 0;
+    int bundled = 0, animations = 0, public_scenes = 0, missing = 0;
     for (const CatalogEntry& e : catalog.entries) {
         if (e.path.starts_with("builtin:")) continue;
+        if (e.path.ends_with(".anim.json")) {  // the bundled animation, loadable as a scene
+            ++animations;
+            EXPECT_NE(e.label.find("(animated)"), std::string::npos) << e.label;
+            EXPECT_TRUE(load_animated_scene("", e.path).animation) << e.path;
+            continue;
+        }
         if (e.path.find("/assets/") != std::string::npos) {
             ++bundled;
             continue;
@@ -102,6 +110,7 @@ TEST(SceneCatalog, TheRepositorysManifest) {
         missing += !e.present;
     }
     EXPECT_EQ(bundled, 3);
+    EXPECT_EQ(animations, 1);
     EXPECT_EQ(public_scenes, 7);
     EXPECT_EQ(catalog.missing, missing);
 }

@@ -22,26 +22,38 @@ TEST(Layout, PanelsTileTheWindowAndNeverOverlapTheImage) {
     for (float width : {320.0f, 640.0f, 1024.0f, 1280.0f, 1600.0f, 2560.0f, 7680.0f})
         for (float height : {240.0f, 480.0f, 640.0f, 800.0f, 900.0f, 1440.0f, 4320.0f})
             for (bool open : {true, false})
-                for (float em : {13.0f, 20.0f}) {
-                    const Layout l = compute_layout({width, height, em, em + 6.0f, false, open});
-                    const Rect window{0, 0, width, height};
-                    SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
-                    EXPECT_FALSE(l.image.empty());
-                    EXPECT_GE(l.image.w, 0.45f * width - 0.5f);
-                    EXPECT_GE(l.image.h, 0.4f * height - 0.5f);
-                    for (const Rect& r : {l.controls, l.analysis, l.image})
-                        EXPECT_TRUE(window.contains(r));
-                    EXPECT_FALSE(l.controls.overlaps(l.image));
-                    EXPECT_FALSE(l.analysis.overlaps(l.image));
-                    EXPECT_FALSE(l.controls.overlaps(l.analysis));
-                    // Together they cover the window.
-                    const float area = l.controls.w * l.controls.h + l.analysis.w * l.analysis.h +
-                                       l.image.w * l.image.h;
-                    EXPECT_NEAR(area, width * height, 1e-3f * width * height);
-                    if (!open) {
-                        EXPECT_LE(l.analysis.h, em + 6.0f);
+                for (bool animated : {false, true})
+                    for (float em : {13.0f, 20.0f}) {
+                        const Layout l =
+                            compute_layout({width, height, em, em + 6.0f, false, open, animated});
+                        const Rect window{0, 0, width, height};
+                        SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height));
+                        EXPECT_FALSE(l.image.empty());
+                        EXPECT_GE(l.image.w, 0.45f * width - 0.5f);
+                        EXPECT_GE(l.image.h, (animated ? 0.26f : 0.4f) * height - 0.5f);
+                        EXPECT_EQ(l.timeline.empty(), !animated);
+                        for (const Rect& r : {l.controls, l.analysis, l.image, l.timeline})
+                            EXPECT_TRUE(r.empty() || window.contains(r));
+                        for (const Rect& r : {l.controls, l.analysis, l.timeline})
+                            EXPECT_FALSE(r.overlaps(l.image));
+                        EXPECT_FALSE(l.controls.overlaps(l.analysis));
+                        EXPECT_FALSE(l.timeline.overlaps(l.analysis));
+                        EXPECT_FALSE(l.timeline.overlaps(l.controls));
+                        if (animated) {  // the timeline spans the image, right under it
+                            EXPECT_EQ(l.timeline.x, l.image.x);
+                            EXPECT_EQ(l.timeline.w, l.image.w);
+                            EXPECT_EQ(l.timeline.y, l.image.bottom());
+                            EXPECT_GE(l.timeline.h, std::min(2.0f * (em + 6.0f), 0.05f * height));
+                        }
+                        // Together they cover the window.
+                        const float area = l.controls.w * l.controls.h +
+                                           l.analysis.w * l.analysis.h + l.image.w * l.image.h +
+                                           l.timeline.w * l.timeline.h;
+                        EXPECT_NEAR(area, width * height, 1e-3f * width * height);
+                        if (!open) {
+                            EXPECT_LE(l.analysis.h, em + 6.0f);
+                        }
                     }
-                }
     const Layout hidden = compute_layout({1280, 800, 13, 19, true, true});
     EXPECT_TRUE(hidden.controls.empty());
     EXPECT_TRUE(hidden.analysis.empty());

@@ -196,7 +196,7 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
     std::string script = "wait-spp 1\npick 700 200\nwait-analysis\n";
     for (const char* tab : {"Scene", "Camera", "Render", "EDACRT"})
         script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
-    for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal"})
+    for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal", "Frames"})
         script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
     script += "set node 1\ntab Recursion\nframes 3\ncheck-layout\n";
     script +=
@@ -210,7 +210,7 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
         for (std::size_t at = 0;
              (at = result.output.find("layout ok: 2 panels", at)) != std::string::npos; ++at)
             ++checks;
-        EXPECT_EQ(checks, 11u) << result.output;
+        EXPECT_EQ(checks, 12u) << result.output;
     }
     std::filesystem::remove_all(dir);
 }
@@ -260,6 +260,47 @@ TEST(ViewerScreenshots, TheCopiedCommandLineRendersTheViewersImage) {
     const Image shown = read_png(saved / "view.png");
     EXPECT_EQ(shown.width, a.width) << "the PNG is the image region as shown";
     EXPECT_EQ(shown.height, a.height);
+    if (!HasFailure()) std::filesystem::remove_all(dir);
+}
+
+// The bundled animation: shown at two times, played for a few frames, every method compared on
+// a frame; the layout holds with the timeline; the copied command renders the viewer's frame.
+TEST(ViewerScreenshots, AnAnimationShowsItsFramesPlaysAndRoundTripsThroughTheCommandLine) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_animation_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto file = [&](const char* name) { return (dir / name).string(); };
+    const std::string script =
+        "set time 0.5\nwait-spp 4\nsave-linear " + file("early.pfm") + "\nwrite-command " +
+        file("command.txt") + "\nscreenshot " + file("early.png") +
+        "\nset play 1\nwait-played 6\nset play 0\nset time 2.6\nwait-spp 4\nsave-linear " +
+        file("late.pfm") + "\ncompare\nwait-compare\ntab Frames\nframes 3\ncheck-layout\n" +
+        "screenshot " + file("late.png") + "\n";
+    const auto viewer = run_viewer_script(
+        dir, script, 1024, 640,
+        "--integrator primary --spp 4 --method bvh " +
+            (test::source_dir() / "assets/animations/spot-and-teapot.anim.json").string());
+    ASSERT_EQ(viewer.exit_code, 0) << viewer.output;
+    EXPECT_NE(viewer.output.find("layout ok: 3 panels"), std::string::npos) << viewer.output;
+    const Image early = read_pfm(file("early.pfm")), late = read_pfm(file("late.pfm"));
+    ASSERT_EQ(early.width, late.width);
+    EXPECT_FALSE(early.pixels == late.pixels) << "two times, one image";
+    // The objects moved: a good share of the pixels changed.
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < early.pixels.size(); ++i)
+        changed += glm::length(early.pixels[i] - late.pixels[i]) > 0.05f;
+    EXPECT_GT(double(changed) / double(early.pixels.size()), 0.02);
+    std::ifstream in(file("command.txt"));
+    std::string command;
+    std::getline(in, command);
+    EXPECT_NE(command.find("--animate "), std::string::npos) << command;
+    EXPECT_NE(command.find("--time 0.5 "), std::string::npos) << command;
+    command = command.substr(0, command.rfind(" --out ")) + " --out " + file("cli.pfm");
+    const auto cli = test::run_command(std::string(EDACRT_CLI) + command.substr(6));
+    ASSERT_EQ(cli.exit_code, 0) << command << "\n" << cli.output;
+    EXPECT_TRUE(read_pfm(file("cli.pfm")).pixels == early.pixels)
+        << "the command renders another frame than the viewer showed";
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 

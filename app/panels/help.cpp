@@ -24,6 +24,8 @@ void draw_help(ViewerState& s) {
         {"H or ?", "this help"},
         {"F12", "save the image as shown (Render tab: folder)"},
         {"Esc", "quit"},
+        {"Space", "play / pause an animation (the timeline under the image)"},
+        {"Left / Right", "an animation 1/24 s back / on"},
         {"click (picking)", "follow a pixel's ray (Traversal tab)"},
     };
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {

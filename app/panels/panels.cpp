@@ -110,6 +110,10 @@ void draw_analysis(ViewerState& s, float heat_max) {
             draw_traversal_tab(s);
             ImGui::EndTabItem();
         }
+        if (tab(s, "Frames")) {
+            draw_frames_tab(s);
+            ImGui::EndTabItem();
+        }
         ImGui::EndTabBar();
     }
     place(s, "Analysis");

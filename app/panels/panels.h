@@ -18,6 +18,14 @@ void draw_stats_tab(ViewerState& state);
 void draw_heatmap_tab(ViewerState& state, float heat_max);
 void draw_recursion_tab(ViewerState& state);
 void draw_traversal_tab(ViewerState& state);
+void draw_frames_tab(ViewerState& state);
+/// The animation's timeline under the image (play, pause, scrub, speed); nothing for a still
+/// scene.
+void draw_timeline(ViewerState& state);
+/// The Scene tab's animation settings: which deformation, how tracers take frames, motion blur.
+void draw_animation_settings(ViewerState& state);
+/// The "compare methods" button and the table of every method's update and trace times.
+void draw_comparison(ViewerState& state);
 /// The value under the cursor while a heat map is shown (a tooltip over the image).
 void draw_heat_readout(const ViewerState& state);
 

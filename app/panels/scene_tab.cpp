@@ -35,6 +35,7 @@ void draw_scene_tab(ViewerState& s) {
     if (!s.scene_error.empty()) {
         error_text(s.scene_error);
     }
+    draw_animation_settings(s);
     if (s.scene) {
         ImGui::Separator();
         const Aabb box = s.scene->bounds();

@@ -38,22 +38,32 @@ void level_charts(const std::vector<LevelStats>& levels) {
     bars("ms", levels, width, [](const LevelStats& l) { return l.seconds() * 1e3; });
 }
 
+}  // namespace
+
 /// Every method on the view's pixel-centre camera rays, the render paused meanwhile.
-void compare_section(ViewerState& s) {
+void draw_comparison(ViewerState& s) {
     ImGui::Separator();
     if (ImGui::Button(s.comparing ? "comparing..." : "compare methods") && !s.comparing)
         s.compare_requested = true;
     ImGui::SameLine();
-    ImGui::TextDisabled("one camera ray per pixel, every method, median of 3 (render paused)");
+    ImGui::TextDisabled(
+        s.playback.frames ? "this frame's camera rays (1 per pixel), every method and update, "
+                            "median of 3 (render paused)"
+                          : "one camera ray per pixel, every method, median of 3 (render paused)");
     if (s.comparison.empty()) return;
+    if (s.playback.frames)
+        ImGui::TextDisabled("measured at t = %.3f s; refit and dynamic start from t - 1/24 s",
+                            s.playback.compared_time);
     const MethodTotals* embree = nullptr;
     for (const MethodTotals& m : s.comparison)
-        if (m.method == Method::embree && m.error.empty()) embree = &m;
+        if (m.method == Method::embree && m.update == SceneUpdate::rebuild && m.error.empty())
+            embree = &m;
     const ImGuiTableFlags flags =
         ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
     const float height = float(s.comparison.size() + 2) * ImGui::GetFrameHeightWithSpacing();
-    if (!ImGui::BeginTable("compare", 6, flags, ImVec2(0, height))) return;
-    for (const char* h : {"method", "ms", "Mrays/s", "/ embree", "box tests/ray", "tri tests/ray"})
+    if (!ImGui::BeginTable("compare", 8, flags, ImVec2(0, height))) return;
+    for (const char* h : {"method", "update", "update ms", "ms", "Mrays/s", "/ embree",
+                          "box tests/ray", "tri tests/ray"})
         ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     for (const MethodTotals& m : s.comparison) {
@@ -61,11 +71,17 @@ void compare_section(ViewerState& s) {
         ImGui::TableNextColumn();
         cell_text("%s", std::string(method_name(m.method)).c_str());
         ImGui::TableNextColumn();
+        // Methods without a structure have nothing to refit: their update is per-frame data.
+        const bool structure = m.method == Method::bvh || m.method == Method::embree;
+        cell_text("%s", structure ? std::string(scene_update_name(m.update)).c_str() : "none");
+        ImGui::TableNextColumn();
         if (!m.error.empty()) {
             cell_text("%s", m.error.c_str());
             continue;
         }
         const double n = double(std::max<std::uint64_t>(m.stats.rays, 1));
+        cell_text("%.1f", m.update_seconds * 1e3);
+        ImGui::TableNextColumn();
         cell_text("%.1f", m.seconds * 1e3);
         ImGui::TableNextColumn();
         cell_text("%.1f", m.seconds > 0 ? n / m.seconds * 1e-6 : 0.0);
@@ -81,13 +97,11 @@ void compare_section(ViewerState& s) {
     ImGui::EndTable();
 }
 
-}  // namespace
-
 void draw_stats_tab(ViewerState& s) {
     const TraceDetail* detail = s.frame && s.frame->detail ? s.frame->detail.get() : nullptr;
     if (!detail) {
         ImGui::TextDisabled("waiting for the first full-resolution pass");
-        compare_section(s);
+        draw_comparison(s);
         return;
     }
     const auto& levels = detail->levels;
@@ -170,7 +184,7 @@ void draw_stats_tab(ViewerState& s) {
         level_charts(levels);
     }
 
-    compare_section(s);
+    draw_comparison(s);
 }
 
 }  // namespace edacrt::app

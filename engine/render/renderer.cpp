@@ -25,7 +25,7 @@ const RenderSettings& validated(const RenderSettings& settings) {
 
 Renderer::Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
                    const RenderSettings& settings)
-    : scene_(scene),
+    : scene_(&scene),
       tracer_(tracer),
       settings_(validated(settings)),
       projection_(validated(camera), settings.width, settings.height),
@@ -44,8 +44,8 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
     const auto start = std::chrono::steady_clock::now();
     PassStats stats;
     const std::size_t pixels = std::size_t(settings_.width) * std::size_t(settings_.height);
-    Wavefront wf{scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
-                 pixels, cancel,   stats};
+    Wavefront wf{*scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
+                 pixels,  cancel,   stats};
     const std::size_t paths = pixels * std::size_t(samples);
     const std::size_t wave = wavefront_paths(settings_, paths);
     for (std::size_t begin = 0; begin < paths; begin += wave) {
@@ -93,9 +93,10 @@ void Renderer::reset() {
     last_pass_ = total_ = PassStats{};
 }
 
-void Renderer::scene_changed() {
-    shading_ = ShadingScene(scene_);
-    reset();
+void Renderer::scene_changed(const Scene& scene, bool keep_film) {
+    scene_ = &scene;
+    shading_ = ShadingScene(scene);
+    if (!keep_film) reset();
 }
 
 }  // namespace edacrt

@@ -36,10 +36,13 @@ class Renderer {
     /// Starts over (the next pass is sample 0 again).
     void reset();
 
-    /// Starts over on the scene's new geometry (an animation frame: Animation::frame() wrote
-    /// it and the tracer took it with update_scene()): the lights' areas and the scene's
-    /// bounds are recomputed.
-    void scene_changed();
+    /// Takes another frame of the scene's animation for the next passes: `scene` holds the same
+    /// triangles and materials with new positions (Animation::frame() wrote it, into the
+    /// constructor's scene or another buffer that must outlive its use), and the tracer took it
+    /// with update_scene(). The lights' areas and the scene's bounds are recomputed. The film
+    /// starts over, unless `keep_film`: then the next passes add to it, so passes rendered at
+    /// several times of a shutter interval average into motion blur.
+    void scene_changed(const Scene& scene, bool keep_film = false);
 
     const Film& film() const { return film_; }
     const RenderSettings& settings() const { return settings_; }
@@ -49,7 +52,7 @@ class Renderer {
     const std::vector<std::string>& notes() const { return shading_.notes; }
 
   private:
-    const Scene& scene_;
+    const Scene* scene_;  // never null
     Tracer& tracer_;
     RenderSettings settings_;
     PinholeProjection projection_;

@@ -49,6 +49,16 @@ constexpr void sobol_2d(std::uint32_t index, std::uint32_t& x, std::uint32_t& y)
 
 }  // namespace sobol_detail
 
+/// The time of the pass that starts at sample `sample` in a shutter of `shutter` seconds
+/// centred on `time` (motion blur: passes at several times average in the film). The base-2
+/// radical inverse of the sample index, shifted by a half, so that sample 0 is at `time` and
+/// passes of one sample each stratify the shutter.
+constexpr double shutter_time(double time, double shutter, std::uint32_t sample) {
+    double u = double(sobol_detail::reverse_bits(sample)) * 0x1p-32 + 0.5;
+    if (u >= 1.0) u -= 1.0;
+    return time + shutter * (u - 0.5);
+}
+
 /// A point in [0,1)^2: sample `index` of the 2D sequence identified by `stream` (a hash of the
 /// seed, the pixel and the dimension pair).
 constexpr glm::vec2 sobol_sample_2d(std::uint32_t index, std::uint32_t stream) {

@@ -1,0 +1,70 @@
+// The Scene tab's animation section: a deformation of the loaded scene (or the animation file
+// that is loaded), how the BVH and Embree take each new frame, and motion blur.
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "panels.h"
+#include "viewer_jobs.h"
+
+namespace edacrt::app {
+
+void draw_animation_settings(ViewerState& s) {
+    Playback& p = s.playback;
+    ImGui::Separator();
+    ImGui::TextUnformatted("Animation");
+    const bool own = p.frames && s.animation_spec.empty();  // a file or sequence
+    if (own) {
+        ImGui::TextWrapped("%s", p.frames->spec().c_str());
+    } else {
+        // The deformations of any scene, with their default parameters; the field takes
+        // any spec (parameters spelled out).
+        for (const char* kind : {"none", "wave", "twist", "explode"}) {
+            const std::string spec = std::string(kind) == "none" ? "" : kind;
+            const bool current = s.animation_spec.substr(0, s.animation_spec.find(':')) == spec;
+            if (ImGui::RadioButton(kind, current) && !current)
+                load_into(s, s.scene_path, {}, spec, true);
+            ImGui::SameLine();
+        }
+        ImGui::NewLine();
+        ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Apply").x -
+                                2.0f * ImGui::GetStyle().FramePadding.x -
+                                ImGui::GetStyle().ItemSpacing.x);
+        ImGui::InputText("##animation", &s.animation_field);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", animation_help().c_str());
+        ImGui::SameLine();
+        if (ImGui::Button("Apply")) load_into(s, s.scene_path, {}, s.animation_field, true);
+    }
+    if (!p.frames) return;
+    int update = int(p.update);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
+    if (ImGui::Combo("update", &update, "rebuild\0dynamic\0refit\0"))
+        p.update = SceneUpdate(update);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "how bvh and embree take each new frame: rebuild from scratch, a dynamic\n"
+            "Embree scene committed at low quality, or refit the boxes of the tree kept.\n"
+            "edacrt, dacrt and naive keep no structure: nothing to update.");
+    int scale = p.play_scale == 1 ? 0 : p.play_scale == 2 ? 1 : 2;
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
+    if (ImGui::Combo("while playing", &scale, "full resolution\0half resolution\0quarter\0"))
+        p.play_scale = 1 << scale;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "frames render at this resolution while the animation plays (smoother);\n"
+            "paused, the frame shown renders at full resolution and converges");
+    ImGui::Checkbox("motion blur", &p.motion_blur);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "passes are rendered at times spread over the shutter around the frame's time\n"
+            "and averaged: the blur converges while the animation is paused (each played\n"
+            "frame shows its first pass, at the frame's time)");
+    if (p.motion_blur) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
+        ImGui::SliderFloat("shutter s", &p.shutter, 1e-3f, 1.0f, "%.3f",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    }
+    if (!p.error.empty()) error_text(p.error);
+}
+
+}  // namespace edacrt::app

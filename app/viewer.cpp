@@ -356,10 +356,13 @@ int run_viewer(const ViewerOptions& options) {
             if (s.compare_requested && !comparison.valid()) {
                 s.compare_requested = false;
                 worker.set_paused(true);
-                // An animation's frame is also refitted from the one 1/24 s before.
+                // An animation's frame is also refitted from the one 1/24 s before (after, at
+                // the start).
                 std::shared_ptr<const Scene> previous;
+                const double t = s.playback.time;
                 if (s.playback.frames) try {
-                        previous = s.playback.frames->at(std::max(0.0, s.playback.time - 1.0 / 24));
+                        previous =
+                            s.playback.frames->at(t >= 1.0 / 24 ? t - 1.0 / 24 : t + 1.0 / 24);
                         s.playback.compared_time = s.playback.time;
                     } catch (const std::exception& e) {
                         s.playback.error = e.what();

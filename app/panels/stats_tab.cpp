@@ -52,8 +52,9 @@ void draw_comparison(ViewerState& s) {
                           : "one camera ray per pixel, every method, median of 3 (render paused)");
     if (s.comparison.empty()) return;
     if (s.playback.frames)
-        ImGui::TextDisabled("measured at t = %.3f s; refit and dynamic start from t - 1/24 s",
-                            s.playback.compared_time);
+        ImGui::TextDisabled(
+            "measured at t = %.3f s; refit and dynamic start from the frame 1/24 s before",
+            s.playback.compared_time);
     const MethodTotals* embree = nullptr;
     for (const MethodTotals& m : s.comparison)
         if (m.method == Method::embree && m.update == SceneUpdate::rebuild && m.error.empty())

@@ -156,8 +156,9 @@ const std::array<ParamInfo, 18> kParams = {
     real<&EdacrtParams::presplit>(
         "presplit", "pre-split",
         "Not in the paper: before the recursion, large triangles are cut into pieces (early split "
-        "clipping, Ernst & Greiner 2007, grid-aligned planes after Karras & Aila 2013), this many "
-        "extra pieces per triangle in all, shared by the triangles' box areas. A piece's box is "
+        "clipping, Ernst & Greiner 2007, grid-aligned planes after Karras & Aila 2013), at most "
+        "this many extra pieces per triangle in all, shared by the box areas of the triangles "
+        "whose box is at least twice the mean. A piece's box is "
         "that of the clipped part, so a long wall or floor no longer widens every node it "
         "crosses; a hit is still the whole triangle's. 0 turns it off.",
         2.0, 8.0),

@@ -21,8 +21,9 @@ struct PrimReference {
 /// accept a hit; clipped in double. Empty when the triangle misses the region.
 Aabb clipped_bounds(const Triangle& tri, const Aabb& region);
 
-/// References for the triangles: each triangle gets pieces in proportion to its box's surface
-/// area, `extra` times the triangle count in all (0: one reference per triangle). A triangle
+/// References for the triangles: each triangle whose box's surface area is at least twice the
+/// mean gets pieces in proportion to that area, at most `extra` times the triangle count in all
+/// (0: one reference per triangle). A triangle
 /// with n pieces is cut recursively by the coarsest plane of a grid over the scene box that
 /// crosses its piece's longest axis, the pieces shared in proportion to the halves' areas. Every
 /// piece's box is clipped_bounds(), so the union covers conservative_bounds(tri). Parallel; the

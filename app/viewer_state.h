@@ -108,9 +108,7 @@ struct Playback {
     };
     std::vector<FrameTime> history;  // the newest kHistory
     static constexpr std::size_t kHistory = 600;
-    // The other methods on the frame at `compared_time`, measured on request.
-    std::vector<MethodTotals> compared;
-    double compared_time = 0.0;
+    double compared_time = 0.0;  // the frame the comparison (ViewerState) was measured on
 };
 
 struct ViewerState {

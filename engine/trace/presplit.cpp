@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cmath>
@@ -219,6 +220,8 @@ std::vector<PrimReference> presplit_references(std::span<const Triangle> triangl
     for (const double area : areas) mean += area;
     mean /= double(std::max<std::size_t>(areas.size(), 1));
     const std::vector<std::uint32_t> counts = piece_counts(areas, budget, kMinSplitArea * mean);
+    if (std::all_of(counts.begin(), counts.end(), [](std::uint32_t c) { return c == 1; }))
+        return {};  // nothing to cut: the caller uses the triangles themselves
     std::vector<std::size_t> offsets(triangles.size() + 1, 0);
     for (std::size_t i = 0; i < triangles.size(); ++i) offsets[i + 1] = offsets[i] + counts[i];
     std::vector<PrimReference> references(offsets.back(), PrimReference{Aabb{}, kUnused});

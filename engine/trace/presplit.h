@@ -26,8 +26,9 @@ Aabb clipped_bounds(const Triangle& tri, const Aabb& region);
 /// (0: one reference per triangle). A triangle
 /// with n pieces is cut recursively by the coarsest plane of a grid over the scene box that
 /// crosses its piece's longest axis, the pieces shared in proportion to the halves' areas. Every
-/// piece's box is clipped_bounds(), so the union covers conservative_bounds(tri). Parallel; the
-/// result is the same for any thread count.
+/// piece's box is clipped_bounds(), so the union covers conservative_bounds(tri). Empty when no
+/// triangle is cut (one reference per triangle: use the triangles). Parallel; the result is the
+/// same for any thread count.
 std::vector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra);
 
 }  // namespace edacrt

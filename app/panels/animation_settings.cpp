@@ -45,8 +45,9 @@ void draw_animation_settings(ViewerState& s) {
             "Embree scene committed at low quality, or refit the boxes of the tree kept.\n"
             "edacrt, dacrt and naive keep no structure: nothing to update.");
     int scale = p.play_scale == 1 ? 0 : p.play_scale == 2 ? 1 : 2;
-    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
-    if (ImGui::Combo("while playing", &scale, "full resolution\0half resolution\0quarter\0"))
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12.0f);
+    if (ImGui::Combo("while playing", &scale,
+                     "full resolution\0half resolution\0quarter resolution\0"))
         p.play_scale = 1 << scale;
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(

@@ -154,7 +154,8 @@ void RenderWorker::run() {
             }
             const int passes = renderer->film().passes();
             if (request.animation && request.shutter > 0.0) {
-                // Motion blur: this pass at its own time of the shutter, added to the film.
+                // Motion blur: this pass (of one sample) at its own time of the shutter,
+                // added to the film.
                 auto scene = request.animation->at(
                     shutter_time(request.time, request.shutter, std::uint32_t(passes)));
                 if (scene != geometry) {
@@ -165,16 +166,16 @@ void RenderWorker::run() {
             }
             auto captured =
                 renderer->film().passes() == 0 ? std::make_shared<TraceDetail>() : nullptr;
-            const auto start = std::chrono::steady_clock::now();
             bool done = false;
-            const int samples = passes == 0 ? 1
-                                            : std::clamp(request.spp_target - passes, 1,
-                                                         request.settings.samples_per_pass);
+            // With a shutter, one sample per pass: each pass is its own time.
+            const int samples =
+                passes == 0 || (request.animation && request.shutter > 0.0)
+                    ? 1
+                    : std::clamp(request.spp_target - passes, 1, request.settings.samples_per_pass);
             arena->execute(
                 [&] { done = renderer->render_pass(&cancel_, captured.get(), samples); });
-            if (!done) continue;  // cancelled: a new request is waiting
-            seconds +=
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (!done) continue;                       // cancelled: a new request is waiting
+            seconds += renderer->last_pass().seconds;  // without the statistics' recording
             if (captured) {
                 detail = std::move(captured);
                 first_pass_seconds = seconds;

@@ -95,10 +95,7 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
     if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
     if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s
-        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) {
-            s.playback.playing = !s.playback.playing;
-            s.playback.waited = 0.0;
-        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_play(s);
         if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) seek(s, s.playback.time - 1.0 / 24);
         if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) seek(s, s.playback.time + 1.0 / 24);
     }
@@ -281,6 +278,10 @@ int run_viewer(const ViewerOptions& options) {
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
+                if (!frame->error.empty() && s.playback.playing) {  // no frame to wait for
+                    s.playback.playing = false;
+                    s.playback.error = frame->error;
+                }
                 if (frame->error.empty() && frame != s.frame) {
                     if (frame->preview) s.convergence.clear();
                     if (!frame->preview && s.frame && !s.frame->preview &&

@@ -190,18 +190,24 @@ struct ViewerState {
 };
 
 /// Moves the animation to `t` (wrapped into [0, duration] when looping, else clamped; the
-/// end stops playback): the state's scene becomes that frame. On an error the scene stays,
+/// end stops playback; an animation without duration does not play): the state's scene
+/// becomes that frame. On an error the scene stays,
 /// playback stops and the error shows.
 void seek(ViewerState& state, double t);
 
 /// Called once per UI frame, `dt` seconds after the last: while playing, once the shown frame
 /// has its first full-resolution pass (`frame_done`), advances the time by the wall clock
-/// since the last advance times the speed. Frames are never skipped half-rendered, so a slow
+/// since the last advance times the speed (not counting time the render was paused or
+/// comparing methods). Frames are never skipped half-rendered, so a slow
 /// method plays fewer frames, each at its real time.
 void advance_playback(ViewerState& state, bool frame_done, double dt);
 
-/// Adds a rendered frame's times to the playback history (once per request: its first
-/// full-resolution pass).
+/// Play or pause (the timeline's button, Space); playing from the end without a loop starts
+/// over from 0.
+void toggle_play(ViewerState& state);
+
+/// Adds a rendered frame's times to the playback history (once per frame: its first
+/// full-resolution pass; another view of the same time and method is not added).
 void record_frame_time(ViewerState& state, const Frame& frame, Method method);
 
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,

@@ -70,6 +70,8 @@ void run(const RenderOptions& o) {
     settings.primary = parse_primary_shading(o.primary);
     if (!o.time_budget_only())
         settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+    // Motion blur renders each pass at its own time of the shutter: passes of one sample.
+    if (o.animation.shutter > 0.0) settings.samples_per_pass = 1;
     if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
     validate(settings);
     check_render_memory(settings, command_bytes_per_pixel(o));

@@ -74,9 +74,9 @@ TEST(AnimationCli, ShutterAveragesPassesOverTimeIntoMotionBlur) {
         "--animate " +
         (test::source_dir() / "assets/animations/spot-and-teapot.anim.json").string();
     const auto render = [&](const std::string& args, const std::string& name) {
-        const auto result = test::run_cli(
-            "render --width 48 --height 32 --integrator primary --samples-per-pass 1 " + animation +
-            " " + args + " --out " + (dir.path() / name).string());
+        const auto result =
+            test::run_cli("render --width 48 --height 32 --integrator primary " + animation + " " +
+                          args + " --out " + (dir.path() / name).string());
         EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
         return read_pfm(dir.path() / name);
     };
@@ -84,6 +84,9 @@ TEST(AnimationCli, ShutterAveragesPassesOverTimeIntoMotionBlur) {
     EXPECT_TRUE(render("--time 1 --spp 2 --shutter 0", "zero.pfm").pixels == sharp.pixels);
     const Image blurred = render("--time 1 --spp 2 --shutter 0.5", "blur.pfm");
     EXPECT_FALSE(blurred.pixels == sharp.pixels);
+    // Passes of one sample whatever --samples-per-pass says: each is its own time.
+    EXPECT_TRUE(render("--time 1 --spp 2 --shutter 0.5 --samples-per-pass 8", "blur8.pfm").pixels ==
+                blurred.pixels);
     // Two passes of one sample: t = 1, then t = 0.75 (render/sampler.h; the viewer's worker
     // test checks the average sample by sample).
     EXPECT_EQ(shutter_time(1.0, 0.5, 0), 1.0);

@@ -4,6 +4,7 @@
 // variants and the command line of an animated view.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <thread>
 
@@ -92,6 +93,18 @@ TEST(Playback, SeekWrapsWhenLoopingAndStopsAtTheEndOtherwise) {
     EXPECT_FALSE(s.playback.playing) << "the end stops playback without a loop";
     seek(s, -1.0);
     EXPECT_DOUBLE_EQ(s.playback.time, 0.0);
+    // Play at the end without a loop starts over; with a loop the end is shown, not wrapped.
+    seek(s, 2.0);
+    toggle_play(s);
+    EXPECT_TRUE(s.playback.playing);
+    EXPECT_DOUBLE_EQ(s.playback.time, 0.0);
+    toggle_play(s);
+    EXPECT_FALSE(s.playback.playing);
+    s.playback.loop = true;
+    seek(s, 2.0);
+    EXPECT_DOUBLE_EQ(s.playback.time, 2.0);
+    seek(s, 4.5);
+    EXPECT_DOUBLE_EQ(s.playback.time, 0.5);
     // A non-finite time is ignored; the scene stays.
     const auto scene = s.scene;
     seek(s, std::nan(""));
@@ -111,6 +124,12 @@ TEST(Playback, AdvancesOnlyOnceTheFrameIsShownByTheWallClockTimesTheSpeed) {
     advance_playback(s, true, 0.2);
     EXPECT_NEAR(s.playback.time, 0.3, 1e-12) << "0.6 s waited at half speed";
     EXPECT_TRUE(s.scene->positions == fresh_frame(s.playback.time).positions);
+    // Time the render is held (methods compared, or paused) does not count.
+    s.comparing = true;
+    advance_playback(s, false, 5.0);
+    s.comparing = false;
+    advance_playback(s, true, 0.2);
+    EXPECT_NEAR(s.playback.time, 0.4, 1e-12);
     // The history keeps the first full pass of each request, with its method.
     Frame frame;
     frame.spp = 1;
@@ -120,11 +139,15 @@ TEST(Playback, AdvancesOnlyOnceTheFrameIsShownByTheWallClockTimesTheSpeed) {
     record_frame_time(s, frame, Method::bvh);
     frame.spp = 5;
     record_frame_time(s, frame, Method::bvh);  // a later pass: not a new frame
+    frame.spp = 1;
+    record_frame_time(s, frame, Method::bvh);  // the same time seen from elsewhere
     ASSERT_EQ(s.playback.history.size(), 1u);
     EXPECT_EQ(s.playback.history[0].work, UpdateWork::refitted);
     EXPECT_EQ(s.playback.history[0].method, Method::bvh);
-    frame.spp = 1;
-    for (int i = 0; i < 700; ++i) record_frame_time(s, frame, Method::edacrt);
+    for (int i = 0; i < 700; ++i) {
+        frame.time = 0.001 * i;
+        record_frame_time(s, frame, Method::edacrt);
+    }
     EXPECT_EQ(s.playback.history.size(), Playback::kHistory);
     // A still scene neither plays nor records.
     load_into(s, "builtin:cornell");
@@ -231,26 +254,34 @@ TEST(RenderWorker, MotionBlurAveragesPassesOverTheShutter) {
     RenderWorker worker;
     RenderRequest request = animated_request(pool, 1.0, Method::edacrt);
     request.shutter = 0.5;
-    request.spp_target = 2;  // passes of 1 sample each: at t and at one other shutter time
+    request.spp_target = 4;
+    request.settings.samples_per_pass = 4;  // a shutter still renders one sample per pass
     const auto blurred = finished(worker, worker.submit(request));
     ASSERT_TRUE(blurred);
-    EXPECT_EQ(blurred->spp, 2);
-    // The same by hand: sample 0 at t, then the geometry of sample 1's shutter time.
-    Scene scene = fresh_frame(1.0);
+    EXPECT_EQ(blurred->spp, 4);
+    // The same by hand: sample k on the geometry of shutter_time(1, 0.5, k), which stratifies
+    // the shutter: 1, 0.75, 0.875, 0.8125 + a quarter... (the radical inverse, shifted).
     const auto tracer = make_tracer(Method::edacrt, request.params);
-    tracer->set_scene(scene);
-    Renderer renderer(scene, *tracer, request.camera, request.settings);
-    renderer.render_pass(nullptr, nullptr, 1);
-    const double t1 = shutter_time(1.0, 0.5, 1);
-    EXPECT_NE(t1, 1.0);
-    EXPECT_GE(t1, 0.75);
-    EXPECT_LT(t1, 1.25);
-    Scene later = fresh_frame(t1);
-    tracer->update_scene(later, SceneUpdate::rebuild);
-    renderer.scene_changed(later, true);
-    renderer.render_pass(nullptr, nullptr, 1);
+    std::vector<Scene> frames;
+    std::vector<double> times;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+        times.push_back(shutter_time(1.0, 0.5, k));
+        frames.push_back(fresh_frame(times.back()));
+    }
+    EXPECT_EQ(times[0], 1.0);
+    std::sort(times.begin(), times.end());
+    for (std::size_t k = 0; k < 4; ++k)  // one in each quarter of [0.75, 1.25)
+        EXPECT_TRUE(times[k] >= 0.75 + 0.125 * double(k) && times[k] < 0.875 + 0.125 * double(k))
+            << times[k];
+    tracer->set_scene(frames[0]);
+    Renderer renderer(frames[0], *tracer, request.camera, request.settings);
+    for (std::size_t k = 0; k < 4; ++k) {
+        tracer->update_scene(frames[k], SceneUpdate::rebuild);
+        renderer.scene_changed(frames[k], true);
+        renderer.render_pass(nullptr, nullptr, 1);
+    }
     EXPECT_TRUE(blurred->image.pixels == renderer.film().mean().pixels);
-    // Without the shutter, the second sample is at t too: another image.
+    // Without the shutter, every sample is at t: another image.
     request.shutter = 0.0;
     const auto sharp = finished(worker, worker.submit(request));
     EXPECT_FALSE(sharp->image.pixels == blurred->image.pixels);

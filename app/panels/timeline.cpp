@@ -19,10 +19,8 @@ void draw_timeline(ViewerState& s) {
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                      ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
     constexpr double kStep = 1.0 / 24.0;  // one frame at 24 fps
-    if (ImGui::Button(p.playing ? "pause" : "play ", ImVec2(ImGui::GetFontSize() * 3.2f, 0))) {
-        p.playing = !p.playing;
-        p.waited = 0.0;
-    }
+    if (ImGui::Button(p.playing ? "pause" : "play ", ImVec2(ImGui::GetFontSize() * 3.2f, 0)))
+        toggle_play(s);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Space: play or pause");
     ImGui::SameLine();
     if (ImGui::ArrowButton("##back", ImGuiDir_Left)) seek(s, p.time - kStep);

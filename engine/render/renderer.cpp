@@ -65,13 +65,17 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
         }
         if (!done) return false;
     }
+    double untimed = 0.0;
     if (primary_detail) {
         // The pass's camera rays again, untimed, as one batch: one recursion to show.
         if (wf.cancelled()) return false;
+        const auto detail_start = std::chrono::steady_clock::now();
         std::vector<Ray> rays;
         wf.camera_rays(0, pixels, rays);
         std::vector<Hit> hits(rays.size());
         tracer_.trace(rays, hits, Query::closest, primary_detail);
+        untimed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - detail_start).count();
     }
     const std::span<glm::vec3> rendered(samples_.data(), paths);
     for (glm::vec3& sample : rendered)
@@ -82,7 +86,8 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
     // In sample order, as passes of one sample would add them: the same sums.
     for (int k = 0; k < samples; ++k)
         film_.add_pass(rendered.subspan(std::size_t(k) * pixels, pixels));
-    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - untimed;
     last_pass_ = stats;
     total_ += stats;
     return true;

@@ -211,7 +211,8 @@ std::vector<PrimReference> presplit_references(std::span<const Triangle> triangl
     Box scene;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const Box box = to_double(exact_bounds(triangles[i]));
-        areas[i] = box.surface_area();
+        const double area = box.surface_area();
+        areas[i] = std::isfinite(area) ? area : 0.0;  // (loaders refuse such corners anyway)
         scene.lo = glm::min(scene.lo, box.lo);
         scene.hi = glm::max(scene.hi, box.hi);
     }

@@ -1,7 +1,8 @@
 #include "command_line.h"
 
-#include <cstdio>
 #include <string_view>
+
+#include "util/exact_text.h"
 
 namespace edacrt::app {
 namespace {
@@ -17,22 +18,6 @@ std::string quoted(std::string_view word) {
     return out + "'";
 }
 
-/// %.9g: nine significant digits read back to the same float.
-std::string exact(float v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", double(v));
-    return text;
-}
-
-/// %.17g: seventeen significant digits read back to the same double.
-std::string exact(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", v);
-    return text;
-}
-
-std::string exact(const glm::vec3& v) { return exact(v.x) + "," + exact(v.y) + "," + exact(v.z); }
-
 }  // namespace
 
 std::string render_command_line(const ViewCommand& v) {
@@ -43,9 +28,9 @@ std::string render_command_line(const ViewCommand& v) {
     else
         line += " --scene " + quoted(v.scene) + " --animate " + quoted(v.animation);
     if (v.animated) {
-        line +=
-            " --time " + exact(v.time) + " --update " + std::string(scene_update_name(v.update));
-        if (v.shutter > 0.0) line += " --shutter " + exact(v.shutter);
+        line += " --time " + exact_text(v.time) + " --update " +
+                std::string(scene_update_name(v.update));
+        if (v.shutter > 0.0) line += " --shutter " + exact_text(v.shutter);
     }
     line += " --method " + std::string(method_name(v.method));
     if (v.method == Method::embree && v.embree_mode != kDefaultEmbreeMode)
@@ -57,9 +42,9 @@ std::string render_command_line(const ViewCommand& v) {
     if (s.integrator == Integrator::ao) line += " --ao-samples " + std::to_string(s.ao_samples);
     line += " --spp " + std::to_string(v.spp) + " --width " + std::to_string(s.width) +
             " --height " + std::to_string(s.height) + " --seed " + std::to_string(s.seed);
-    line += " --eye " + exact(v.camera.eye) + " --look-at " + exact(v.camera.look_at) + " --up " +
-            exact(v.camera.up) + " --fov " + exact(v.camera.vfov_degrees);
-    if (v.exposure != 0.0f) line += " --exposure " + exact(v.exposure);
+    line += " --eye " + exact_text(v.camera.eye) + " --look-at " + exact_text(v.camera.look_at) +
+            " --up " + exact_text(v.camera.up) + " --fov " + exact_text(v.camera.vfov_degrees);
+    if (v.exposure != 0.0f) line += " --exposure " + exact_text(v.exposure);
     if (v.tone_map != "clamp") line += " --tone-map " + v.tone_map;
     const EdacrtParams defaults;
     for (const ParamInfo& info : edacrt_param_info())

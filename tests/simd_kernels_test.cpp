@@ -1,8 +1,8 @@
 // The AVX2 kernels against the scalar tests they replace, bit for bit, on random and
 // adversarial inputs: the slab test on eight lanes (intersect_box8), the triangle test on
-// eight triangles (intersect_triangle8: what it decides must be what intersect_triangle
-// decides, and it may hand any lane back), and the in-place filter (filter_rays), sequential
-// and in parallel blocks.
+// eight triangles and on eight rays (intersect_triangle8, intersect_rays8: what they decide
+// must be what intersect_triangle decides, and they may hand any lane back), and the in-place
+// filter (filter_rays), sequential and in parallel blocks.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -168,6 +168,75 @@ TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
     // The float path decides most lanes; the awkward ones go back to the scalar test.
     EXPECT_GT(accepted, 2000);
     EXPECT_GT(rejected, 100000);
+    EXPECT_GT(handed_back, 1000);
+}
+
+TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides) {
+    std::mt19937 rng(13);
+    int accepted = 0, rejected = 0, handed_back = 0;
+    for (int round = 0; round < 40000; ++round) {
+        const Triangle tri = awkward_triangle(rng);
+        TriangleCorners corners;
+        const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
+        for (int c = 0; c < 3; ++c)
+            for (int a = 0; a < 4; ++a) corners.p[c][a] = a < 3 ? (*p[c])[a] : 0.0f;
+        // Eight rays of any directions (so lanes differ in their axes), most aimed at the
+        // triangle's corners, edges or inside.
+        Ray rays[8];
+        alignas(32) float lane[8][8];
+        for (int l = 0; l < 8; ++l) {
+            Ray& ray = rays[l];
+            ray = awkward_ray(rng);
+            const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
+            const glm::vec3 aim = tri.p0 + w0 * (tri.p1 - tri.p0) + w1 * (tri.p2 - tri.p0);
+            if (rng() % 4 != 0 && aim != ray.org) ray.dir = aim - ray.org;
+            for (int a = 0; a < 3; ++a) {
+                lane[a][l] = ray.org[a];
+                lane[3 + a][l] = ray.dir[a];
+            }
+            lane[6][l] = ray.tmin;
+            lane[7][l] = ray.tmax;
+        }
+        const auto v = [&](int k) { return _mm256_load_ps(lane[k]); };
+        const WatertightRays8 rays8 = make_watertight_rays8({v(0), v(1), v(2)}, {v(3), v(4), v(5)});
+        alignas(32) std::int32_t k[3][8];
+        alignas(32) float sx[8], sy[8], sz[8];
+        for (int a = 0; a < 3; ++a)
+            _mm256_store_si256(reinterpret_cast<__m256i*>(k[a]), rays8.k[a]);
+        _mm256_store_ps(sx, rays8.sx);
+        _mm256_store_ps(sy, rays8.sy);
+        _mm256_store_ps(sz, rays8.sz);
+        const unsigned valid = rng() % 4 == 0 ? unsigned(rng() % 256) : 0xffu;
+        TriangleLanes8 lanes;
+        intersect_rays8(rays8, corners, v(6), v(7), valid, lanes);
+        ASSERT_EQ(lanes.accepted & lanes.scalar, 0u);
+        ASSERT_EQ((lanes.accepted | lanes.scalar) & ~valid, 0u);
+        for (int l = 0; l < 8; ++l) {
+            const WatertightRay wray = make_watertight_ray(rays[l]);
+            ASSERT_EQ(k[0][l], wray.kx);
+            ASSERT_EQ(k[1][l], wray.ky);
+            ASSERT_EQ(k[2][l], wray.kz);
+            ASSERT_TRUE(same_bits(sx[l], wray.sx) && same_bits(sy[l], wray.sy) &&
+                        same_bits(sz[l], wray.sz));
+            if (!((valid >> l) & 1) || ((lanes.scalar >> l) & 1)) {
+                handed_back += (lanes.scalar >> l) & 1;
+                continue;
+            }
+            TriangleHit hit;
+            const bool scalar = intersect_triangle(wray, tri, rays[l].tmin, rays[l].tmax, hit);
+            ASSERT_EQ(scalar, ((lanes.accepted >> l) & 1) != 0) << "round " << round;
+            if (!scalar) {
+                ++rejected;
+                continue;
+            }
+            ++accepted;
+            ASSERT_TRUE(same_bits(hit.t, lanes.t[l]));
+            ASSERT_TRUE(same_bits(hit.u, lanes.v[l] * lanes.inv_det[l]));
+            ASSERT_TRUE(same_bits(hit.v, lanes.w[l] * lanes.inv_det[l]));
+        }
+    }
+    EXPECT_GT(accepted, 1000);
+    EXPECT_GT(rejected, 50000);
     EXPECT_GT(handed_back, 1000);
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// intersect_triangle (triangle.h) for one ray against eight triangles with AVX2, bit for bit:
+// intersect_triangle (triangle.h) with AVX2, for one ray against eight triangles or eight rays
+// against one triangle, bit for bit:
 // the float path's operations in the same order (max_ps with swapped operands is std::max),
 // and every lane the float path cannot decide alone (an uncertain edge, an untrusted
 // distance) handed back to the scalar test, which then takes its double-precision path. The
@@ -149,6 +150,76 @@ struct ShearedTriangles8 {
     s.shear_x = set(std::abs(ray.dir[kx]));
     s.shear_y = set(std::abs(ray.dir[ky]));
     decide_triangles8(s, set(tmin), set(tmax), valid, out);
+}
+
+/// A triangle's corners as (x, y, z, 0) each: a lane picks its rays' axes with one permute.
+struct TriangleCorners {
+    alignas(16) float p[3][4];
+};
+
+/// make_watertight_ray for eight rays: each lane's axes kx, ky, kz (as permute indices), its
+/// origin on those axes, its shear and |dir[kx]|, |dir[ky]|.
+struct WatertightRays8 {
+    __m256i k[3];
+    __m256 org[3];
+    __m256 sx, sy, sz;
+    __m256 shear_x, shear_y;
+};
+
+inline WatertightRays8 make_watertight_rays8(const __m256 (&org)[3], const __m256 (&dir)[3]) {
+    using namespace simd8;
+    const __m256 ax = abs(dir[0]), ay = abs(dir[1]), az = abs(dir[2]);
+    // kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2)
+    const __m256 x_ge_y = cmp<_CMP_GE_OQ>(ax, ay);
+    const __m256i z_is_0 = _mm256_castps_si256(all(x_ge_y, cmp<_CMP_GE_OQ>(ax, az)));
+    const __m256i z_is_1 = _mm256_castps_si256(_mm256_andnot_ps(x_ge_y, cmp<_CMP_GE_OQ>(ay, az)));
+    const auto pick = [&](int if_0, int if_1, int if_2) {
+        return _mm256_blendv_epi8(
+            _mm256_blendv_epi8(_mm256_set1_epi32(if_2), _mm256_set1_epi32(if_1), z_is_1),
+            _mm256_set1_epi32(if_0), z_is_0);
+    };
+    const auto select = [&](const __m256(&v)[3], __m256i k) {
+        const __m256 is_0 = _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, _mm256_setzero_si256()));
+        const __m256 is_1 = _mm256_castsi256_ps(_mm256_cmpeq_epi32(k, _mm256_set1_epi32(1)));
+        return _mm256_blendv_ps(_mm256_blendv_ps(v[2], v[1], is_1), v[0], is_0);
+    };
+    WatertightRays8 r;
+    r.k[2] = pick(0, 1, 2);
+    const __m256 dir_z = select(dir, r.k[2]);
+    // kx follows kz, ky follows kx; swapped for a negative dir[kz] to keep the winding.
+    const __m256i kx = pick(1, 2, 0), ky = pick(2, 0, 1);
+    const __m256i negative = _mm256_castps_si256(cmp<_CMP_LT_OQ>(dir_z, _mm256_setzero_ps()));
+    r.k[0] = _mm256_blendv_epi8(kx, ky, negative);
+    r.k[1] = _mm256_blendv_epi8(ky, kx, negative);
+    const __m256 dir_x = select(dir, r.k[0]), dir_y = select(dir, r.k[1]);
+    for (int a = 0; a < 3; ++a) r.org[a] = select(org, r.k[a]);
+    r.sz = _mm256_div_ps(set(1.0f), dir_z);
+    r.sx = mul(dir_x, r.sz);
+    r.sy = mul(dir_y, r.sz);
+    r.shear_x = abs(dir_x);
+    r.shear_y = abs(dir_y);
+    return r;
+}
+
+/// Eight rays against one triangle: the triangle's corners in each ray's frame.
+[[gnu::always_inline]] inline void intersect_rays8(const WatertightRays8& rays,
+                                                   const TriangleCorners& tri, __m256 tmin,
+                                                   __m256 tmax, unsigned valid,
+                                                   TriangleLanes8& out) {
+    using namespace simd8;
+    ShearedTriangles8 s;
+    for (int c = 0; c < 3; ++c) {  // shear_triangle
+        const __m256 corner = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(tri.p[c]));
+        const __m256 rx = sub(_mm256_permutevar8x32_ps(corner, rays.k[0]), rays.org[0]);
+        const __m256 ry = sub(_mm256_permutevar8x32_ps(corner, rays.k[1]), rays.org[1]);
+        const __m256 rz = sub(_mm256_permutevar8x32_ps(corner, rays.k[2]), rays.org[2]);
+        s.x[c] = sub(rx, mul(rays.sx, rz));
+        s.y[c] = sub(ry, mul(rays.sy, rz));
+        s.z[c] = mul(rays.sz, rz);
+    }
+    s.shear_x = rays.shear_x;
+    s.shear_y = rays.shear_y;
+    decide_triangles8(s, tmin, tmax, valid, out);
 }
 
 }  // namespace edacrt

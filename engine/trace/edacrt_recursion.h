@@ -111,7 +111,8 @@ struct RecursionScratch {
     std::vector<std::uint32_t> left_hits, right_hits, left_first, right_first;
     std::vector<Boxes8> left_boxes, right_boxes;  // the candidates' boxes, eight at a time
     std::vector<Counters> counters;               // four per block of candidates
-    std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles
+    std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles, eight at a time
+    std::vector<TriangleCorners> tri_corners;     // or one at a time
 
     void reserve(int k, std::size_t triangles) {
         const auto K = std::size_t(k), blocks = (K + 6) / 8;
@@ -402,18 +403,12 @@ class Recursion {
             const float t_far = stream.t_far[i];
             const __m256 left_on_tie =
                 _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
-            // Bit l of a mask to all-ones in lane l.
-            const __m256i lane_bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-            const auto lanes = [&](int mask) {
-                return _mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                    _mm256_and_si256(_mm256_set1_epi32(mask), lane_bits), lane_bits));
-            };
             for (int b = 0; b < blocks; ++b) {
                 __m256 left_entry, right_entry;
                 const __m256 left =
-                    lanes(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry));
-                const __m256 right =
-                    lanes(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry));
+                    lane_mask(unsigned(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry)));
+                const __m256 right = lane_mask(
+                    unsigned(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry)));
                 const __m256 left_nearer = _mm256_or_ps(
                     _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
                     _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
@@ -465,18 +460,31 @@ class Recursion {
             [&] { return tbb::parallel_reduce(all, std::size_t(0), count, std::plus<>()); });
     }
 
-    /// Brute force: every ray against every triangle of the node, one ray against eight
-    /// triangles at a time, in parallel over rays when the node is large (rays are
-    /// independent). An any-hit ray that is already done (passed down unfiltered) is skipped.
+    /// Brute force: every ray against every triangle of the node, in parallel over rays when
+    /// the node is large (rays are independent). Eight lanes at a time, in whichever shape
+    /// takes fewer eight-lane tests: each ray against blocks of eight triangles (a few rays
+    /// and many triangles), or groups of eight rays against one triangle at a time (no lane
+    /// left empty by a short block). An any-hit ray that is already done (passed down
+    /// unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
         RecursionScratch& sc = scratch();
-        gather_triangle_blocks(node, sc.tri_blocks);
+        const std::size_t groups = (node.ray_count + 7) / 8, blocks = (node.tri_count + 7) / 8;
+        const bool by_groups = groups * node.tri_count <= node.ray_count * blocks;
+        if (by_groups)
+            gather_triangle_corners(node, sc.tri_corners);
+        else
+            gather_triangle_blocks(node, sc.tri_blocks);
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
-            return tests + trace_rays(node, sc.tri_blocks, range.begin(), range.end());
+            return tests + (by_groups
+                                ? trace_ray_groups(node, sc.tri_corners, range.begin(), range.end())
+                                : trace_rays(node, sc.tri_blocks, range.begin(), range.end()));
         };
-        const tbb::blocked_range<std::size_t> all(node.ray_begin, node.ray_begin + node.ray_count,
-                                                  16);
+        // Over groups of eight rays, or over rays.
+        const tbb::blocked_range<std::size_t> all =
+            by_groups ? tbb::blocked_range<std::size_t>(0, groups, 2)
+                      : tbb::blocked_range<std::size_t>(node.ray_begin,
+                                                        node.ray_begin + node.ray_count, 16);
         const std::uint64_t tests =
             node.ray_count * node.tri_count < kParallelLeafTests ? trace(all, 0) : isolated([&] {
                 return tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
@@ -496,6 +504,102 @@ class Recursion {
             for (int c = 0; c < 3; ++c)
                 for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
         }
+    }
+
+    /// The leaf's triangles, one at a time, for trace_ray_groups.
+    void gather_triangle_corners(const Node& node, std::vector<TriangleCorners>& corners) {
+        corners.resize(std::max(corners.size(), node.tri_count));
+        for (std::size_t k = 0; k < node.tri_count; ++k) {
+            const Triangle& tri = scene_.triangles[node.tris[k]];
+            const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
+            for (int c = 0; c < 3; ++c)
+                corners[k].p[c][0] = p[c]->x, corners[k].p[c][1] = p[c]->y,
+                corners[k].p[c][2] = p[c]->z, corners[k].p[c][3] = 0.0f;
+        }
+    }
+
+    /// The node's groups of eight rays [first, end) (stream positions ray_begin + 8 g on; the
+    /// last may be short), each against every triangle in order. Each lane does what
+    /// trace_rays does for its ray: a hit shortens its t_far for the next triangle, and an
+    /// any-hit ray stops at its first hit. Returns the triangle tests.
+    std::uint64_t trace_ray_groups(const Node& node, const std::vector<TriangleCorners>& tris,
+                                   std::size_t first, std::size_t end) {
+        const RayStream& stream = batch_.stream;
+        std::uint64_t tests = 0;
+        for (std::size_t g = first; g != end; ++g) {
+            const std::size_t i = node.ray_begin + 8 * g;
+            const int n = int(std::min<std::size_t>(8, node.ray_count - 8 * g));
+            const __m256i in_group =
+                _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+            const auto load = [&](const float* a) { return _mm256_maskload_ps(a + i, in_group); };
+            const __m256 org[3] = {load(stream.org[0]), load(stream.org[1]), load(stream.org[2])};
+            const __m256 dir[3] = {load(stream.dir[0]), load(stream.dir[1]), load(stream.dir[2])};
+            const WatertightRays8 rays = make_watertight_rays8(org, dir);
+            const __m256 tmin = load(stream.tmin);
+            // Each lane's t_far, and its hit: the triangle's place in the leaf (-1: none), u, v.
+            alignas(32) float t_far[8], u[8] = {}, v[8] = {};
+            alignas(32) std::int32_t hit[8];
+            _mm256_store_ps(t_far, load(stream.t_far));
+            std::fill_n(hit, 8, -1);
+            unsigned active = (1u << n) - 1;
+            if constexpr (Q == Query::any)
+                active &= ~unsigned(_mm256_movemask_ps(
+                    _mm256_cmp_ps(_mm256_load_ps(t_far), _mm256_set1_ps(-kInfinity), _CMP_EQ_OQ)));
+            const unsigned traced = active;
+            std::uint32_t tested[8];
+            std::fill_n(tested, 8, std::uint32_t(node.tri_count));
+            for (std::size_t k = 0; k < node.tri_count && active; ++k) {
+                TriangleLanes8 lanes;
+                intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), active, lanes);
+                unsigned hits = 0;
+                if (lanes.accepted) {  // t <= t_far: the lane's ray hits nearer
+                    const __m256 take = lane_mask(lanes.accepted);
+                    const __m256 inv_det = _mm256_load_ps(lanes.inv_det);
+                    const auto update = [&](float* to, __m256 value) {
+                        _mm256_store_ps(to, _mm256_blendv_ps(_mm256_load_ps(to), value, take));
+                    };
+                    update(t_far, _mm256_load_ps(lanes.t));
+                    update(u, _mm256_mul_ps(_mm256_load_ps(lanes.v), inv_det));
+                    update(v, _mm256_mul_ps(_mm256_load_ps(lanes.w), inv_det));
+                    update(reinterpret_cast<float*>(hit),
+                           _mm256_castsi256_ps(_mm256_set1_epi32(std::int32_t(k))));
+                    hits = lanes.accepted;
+                }
+                for (unsigned pending = lanes.scalar; pending; pending &= pending - 1) {
+                    const int l = std::countr_zero(pending);
+                    const WatertightRay wray = make_watertight_ray(stream.ray(i + std::size_t(l)));
+                    TriangleHit h;
+                    if (!intersect_triangle(wray, scene_.triangles[node.tris[k]],
+                                            stream.tmin[i + std::size_t(l)], t_far[l], h))
+                        continue;
+                    t_far[l] = h.t, u[l] = h.u, v[l] = h.v, hit[l] = std::int32_t(k);
+                    hits |= 1u << l;
+                }
+                if constexpr (Q == Query::any) {
+                    for (unsigned done = hits; done; done &= done - 1)
+                        tested[std::countr_zero(done)] = std::uint32_t(k + 1);
+                    active &= ~hits;
+                }
+            }
+            for (unsigned lanes = traced; lanes; lanes &= lanes - 1) {
+                const int l = std::countr_zero(lanes);
+                const std::uint32_t r = stream.id[i + std::size_t(l)];
+                if (hit[l] >= 0) {
+                    record_hit(node, r, node.tris[hit[l]], {t_far[l], u[l], v[l]});
+                    stream.t_far[i + std::size_t(l)] = Q == Query::any ? -kInfinity : t_far[l];
+                }
+                obs_.leaf_ray(r, tested[l]);
+                tests += tested[l];
+            }
+        }
+        return tests;
+    }
+
+    /// Bit l of a mask to all-ones in lane l.
+    static __m256 lane_mask(unsigned mask) {
+        const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+        return _mm256_castsi256_ps(
+            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(mask)), bits), bits));
     }
 
     /// The rays at stream positions [begin, end), one at a time, against eight triangles at a

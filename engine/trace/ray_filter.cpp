@@ -66,31 +66,43 @@ unsigned passes(const Block& b, const Aabb8& box) {
     return unsigned(_mm256_movemask_ps(intersect_box8(ray, box, entry)));
 }
 
-bool passes(const Arrays& s, std::size_t i, const Aabb& box) {
-    const SlabRay ray = make_slab_ray({{s.a[0][i], s.a[1][i], s.a[2][i]},
-                                       {s.a[3][i], s.a[4][i], s.a[5][i]},
-                                       s.a[6][i],
-                                       s.a[7][i]});
-    float entry;
-    return intersect_box(ray, box, s.a[7][i], entry);
-}
+/// Rays held aside: two blocks and a middle of fewer than eight, or a short range whole.
+struct Pending {
+    alignas(32) float a[kArrays][24];
+    /// Rays [n, end) are not rays: zeros, so that the block holding them is well defined.
+    void clear(std::size_t n, std::size_t end) {
+        for (int k = 0; k < kArrays; ++k) std::fill(a[k] + n, a[k] + end, 0.0f);
+    }
+    Block block(std::size_t i) const {
+        Block b;
+        for (int k = 0; k < kArrays; ++k) b.v[k] = _mm256_load_ps(a[k] + i);
+        return b;
+    }
+};
 
-void swap_rays(const Arrays& s, std::size_t i, std::size_t j) {
-    for (int k = 0; k < kArrays; ++k) std::swap(s.a[k][i], s.a[k][j]);
+/// Writes the first `n` pending rays to the range's ends, passing ones (bit i of `mask`)
+/// upwards from write_l, the others downwards from write_r; returns the new write_l.
+std::size_t place(const Arrays& s, const Pending& p, std::size_t n, std::uint32_t mask,
+                  std::size_t write_l, std::size_t write_r) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t to = (mask >> i) & 1 ? write_l++ : --write_r;
+        for (int k = 0; k < kArrays; ++k) s.a[k][to] = p.a[k][i];
+    }
+    return write_l;
 }
 
 std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t end,
                               const Aabb& box) {
-    if (end - begin < 16) {
-        std::size_t i = begin, j = end;
-        while (i < j)
-            if (passes(s, i, box))
-                ++i;
-            else
-                swap_rays(s, i, --j);
-        return i - begin;
-    }
     const Aabb8 box8 = broadcast(box);
+    Pending pending;
+    if (end - begin < 16) {  // held aside whole, tested as two blocks
+        const std::size_t n = end - begin;
+        for (int k = 0; k < kArrays; ++k) std::copy_n(s.a[k] + begin, n, pending.a[k]);
+        pending.clear(n, 16);
+        const std::uint32_t mask = passes(pending.block(0), box8) | passes(pending.block(8), box8)
+                                                                        << 8;
+        return place(s, pending, n, mask, begin, end) - begin;
+    }
     // Passing rays are written upwards from write_l, rejected ones downwards from write_r.
     // The first and last blocks wait in registers, so 16 rays of room exist between the
     // cursors and the unread middle; reading from the end with less room keeps at least 8 on
@@ -119,23 +131,17 @@ std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t en
         write_r -= std::size_t(8 - passed);
     }
     // The gap [write_l, write_r) now holds exactly the unread middle and room for the two
-    // waiting blocks: move the middle out, then place all of them one by one.
+    // waiting blocks: move the middle out, then place all of them.
     const std::size_t middle = read_r - read_l;
-    alignas(32) float pending[kArrays][24];
     for (int k = 0; k < kArrays; ++k) {
-        _mm256_store_ps(pending[k], first.v[k]);
-        _mm256_store_ps(pending[k] + 8, last.v[k]);
-        std::copy_n(s.a[k] + read_l, middle, pending[k] + 16);
+        _mm256_store_ps(pending.a[k], first.v[k]);
+        _mm256_store_ps(pending.a[k] + 8, last.v[k]);
+        std::copy_n(s.a[k] + read_l, middle, pending.a[k] + 16);
     }
-    const unsigned mask = passes(first, box8) | passes(last, box8) << 8;
-    Arrays p = s;
-    for (int k = 0; k < kArrays; ++k) p.a[k] = pending[k];
-    for (std::size_t i = 0; i < 16 + middle; ++i) {
-        const bool pass = i < 16 ? ((mask >> i) & 1) != 0 : passes(p, i, box);
-        const std::size_t to = pass ? write_l++ : --write_r;
-        for (int k = 0; k < kArrays; ++k) s.a[k][to] = pending[k][i];
-    }
-    return write_l - begin;
+    pending.clear(16 + middle, 24);
+    const std::uint32_t mask =
+        passes(first, box8) | passes(last, box8) << 8 | passes(pending.block(16), box8) << 16;
+    return place(s, pending, 16 + middle, mask, write_l, write_r) - begin;
 }
 
 /// A run of misplaced rays: rejected ones before the split point, or passing ones after it.

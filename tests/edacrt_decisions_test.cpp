@@ -220,12 +220,14 @@ TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
     };
     const Case cases[] = {
         {SmallNodes::every_ray, 1000, 100},
-        {SmallNodes::capped, 1000, 30},       // at most sample_count
-        {SmallNodes::surface_area, 1000, 0},  // no sampling at all
+        {SmallNodes::capped, 1000, 30},                        // at most sample_count
+        {SmallNodes::surface_area, 1000, 0},                   // no sampling at all
+        {SmallNodes::scaled, 1000, 100 / kScaledSampleShare},  // one in kScaledSampleShare
         // Above the threshold every policy draws sample_count rays.
         {SmallNodes::every_ray, 50, 30},
         {SmallNodes::capped, 50, 30},
         {SmallNodes::surface_area, 50, 30},
+        {SmallNodes::scaled, 50, 30},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(int(c.policy)) + " threshold " + std::to_string(c.threshold));

@@ -140,7 +140,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
     for (int hit_ratio = 0; hit_ratio < 2; ++hit_ratio)
         for (int order = 0; order < 3; ++order)
             for (int skip = 0; skip < 3; ++skip)
-                for (int small = 0; small < 3; ++small)
+                for (int small = 0; small < 4; ++small)
                     for (int binning = 0; binning < 2; ++binning) {
                         EdacrtParams p;
                         p.hit_ratio = HitRatio(hit_ratio);
@@ -166,7 +166,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         if (HasFatalFailure()) return;
                         ++combinations;
                     }
-    EXPECT_EQ(combinations, 108);
+    EXPECT_EQ(combinations, 144);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, AblationSwitches,

@@ -31,10 +31,11 @@ glm::dvec3 normal_in_double(const Triangle& tri) {
     return glm::cross(glm::dvec3(tri.p1) - p0, glm::dvec3(tri.p2) - p0);
 }
 
-/// refine_hit_in_double with the pair already sheared in double.
-bool refine_sheared_hit(const WatertightRay& r, const Triangle& tri,
-                        const ShearedTriangle<double>& s, float tmin, float tmax,
-                        TriangleHit& out) {
+/// The distance half of refine_hit_in_double: the plane's t in double, or false when the ray
+/// is parallel to the plane, t is outside [tmin, tmax], not finite as a float or within its
+/// rounding error of the origin, or (for extreme coordinates) off the triangle's box.
+bool refine_distance(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
+                     double& t_out) {
     // t from the plane, t = n.(p0 - o) / n.d, with n exact to one rounding (normal_in_double).
     // (Weighting the sheared z by the barycentrics instead cancels twice for a long triangle
     // hit close to its middle: 1e-4 relative in double for a 1:1e6 sliver.)
@@ -74,9 +75,16 @@ bool refine_sheared_hit(const WatertightRay& r, const Triangle& tri,
             glm::any(glm::greaterThan(point, hi + reach)))
             return false;
     }
+    t_out = t;
+    return true;
+}
+
+/// The hit at distance t with the barycentrics of the pair sheared in double; false when the
+/// triangle is seen edge-on.
+bool sheared_hit(const ShearedTriangle<double>& s, double t, TriangleHit& out) {
     const double det = s.u + s.v + s.w;
-    if (det == 0.0) return false;  // seen edge-on
-    out = {t_float, float(s.v / det), float(s.w / det)};
+    if (det == 0.0) return false;
+    out = {float(t), float(s.v / det), float(s.w / det)};
     return true;
 }
 
@@ -107,7 +115,10 @@ ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const T
 
 bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                           TriangleHit& out) {
-    return refine_sheared_hit(r, tri, shear_triangle_in_double(r, tri), tmin, tmax, out);
+    // Most candidates that come here are rejected by their distance: shear only for a hit.
+    double t;
+    return refine_distance(r, tri, tmin, tmax, t) &&
+           sheared_hit(shear_triangle_in_double(r, tri), t, out);
 }
 
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
@@ -119,7 +130,8 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     const double w = edge_uncertain(f.w, f.bx * f.ay, f.by * f.ax) ? d.w : double(f.w);
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
     if (u + v + w == 0) return false;
-    return refine_sheared_hit(r, tri, d, tmin, tmax, out);
+    double t;
+    return refine_distance(r, tri, tmin, tmax, t) && sheared_hit(d, t, out);
 }
 
 glm::vec3 unit_normal(const Triangle& tri) {

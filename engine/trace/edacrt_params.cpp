@@ -34,7 +34,8 @@ void set_field(EdacrtParams& p, double value) {
 constexpr std::array<std::string_view, 2> kHitRatios = {"sampled", "surface-area"};
 constexpr std::array<std::string_view, 3> kOrders = {"sampled", "direction-sign", "left-first"};
 constexpr std::array<std::string_view, 3> kFilterSkips = {"off", "paper", "triangles"};
-constexpr std::array<std::string_view, 3> kSmallNodes = {"every-ray", "capped", "surface-area"};
+constexpr std::array<std::string_view, 4> kSmallNodes = {"every-ray", "capped", "surface-area",
+                                                         "scaled"};
 constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};  // enum order
 constexpr std::array<std::string_view, 2> kSecondChildren = {"after-first", "split"};
 constexpr std::array<std::string_view, 3> kPresets = {"default", "paper", "dacrt"};

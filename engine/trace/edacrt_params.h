@@ -36,7 +36,13 @@ enum class SmallNodes : std::uint8_t {
     every_ray,     // test all of the node's rays against every candidate box
     capped,        // draw at most sample_count rays, as large nodes do
     surface_area,  // surface-area ratios (and the direction-sign order)
+    scaled,        // draw one ray in kScaledSampleShare (at least one, at most sample_count)
 };
+
+/// SmallNodes::scaled: a sampled ray is tested against the 2(K-1) candidate boxes, two
+/// eight-lane tests for K = 8, as many as filtering eight rays into both children; one sample
+/// per sixteen rays keeps the sampling at half the node's filtering.
+inline constexpr std::uint32_t kScaledSampleShare = 16;
 
 /// The axis and range of the K bins (Section 3.1).
 enum class Binning : std::uint8_t {

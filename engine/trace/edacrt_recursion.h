@@ -113,6 +113,7 @@ struct RecursionScratch {
     std::vector<Counters> counters;               // four per block of candidates
     std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles, eight at a time
     std::vector<TriangleCorners> tri_corners;     // or one at a time
+    std::vector<std::int32_t> tri_prims;          // with their scene triangles
 
     void reserve(int k, std::size_t triangles) {
         const auto K = std::size_t(k), blocks = (K + 6) / 8;
@@ -369,8 +370,13 @@ class Recursion {
         // replacement) from a generator seeded by the node, so a batch traces the same way
         // every time; otherwise every ray is a sample.
         const bool draw =
-            !small || (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
-        const std::uint32_t samples = draw ? p_.sample_count : std::uint32_t(node.ray_count);
+            !small || p_.small_nodes == SmallNodes::scaled ||
+            (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
+        const std::uint32_t samples = !draw ? std::uint32_t(node.ray_count)
+                                      : small && p_.small_nodes == SmallNodes::scaled
+                                          ? std::uint32_t(std::clamp<std::size_t>(
+                                                node.ray_count / kScaledSampleShare, 1, p_.sample_count))
+                                          : p_.sample_count;
         const int candidates = p_.bins - 1;
         const std::uint32_t node_seed = hash_combine(
             hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
@@ -472,12 +478,13 @@ class Recursion {
         const std::size_t groups = (node.ray_count + 7) / 8, blocks = (node.tri_count + 7) / 8;
         const bool by_groups = groups * node.tri_count <= node.ray_count * blocks;
         if (by_groups)
-            gather_triangle_corners(node, sc.tri_corners);
+            gather_triangle_corners(node, sc.tri_corners, sc.tri_prims);
         else
             gather_triangle_blocks(node, sc.tri_blocks);
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
             return tests + (by_groups
-                                ? trace_ray_groups(node, sc.tri_corners, range.begin(), range.end())
+                                ? trace_ray_groups(node, sc.tri_corners, sc.tri_prims,
+                                                   range.begin(), range.end())
                                 : trace_rays(node, sc.tri_blocks, range.begin(), range.end()));
         };
         // Over groups of eight rays, or over rays.
@@ -506,10 +513,14 @@ class Recursion {
         }
     }
 
-    /// The leaf's triangles, one at a time, for trace_ray_groups.
-    void gather_triangle_corners(const Node& node, std::vector<TriangleCorners>& corners) {
+    /// The leaf's triangles, one at a time, and the scene triangle of each, for
+    /// trace_ray_groups.
+    void gather_triangle_corners(const Node& node, std::vector<TriangleCorners>& corners,
+                                 std::vector<std::int32_t>& prims) {
         corners.resize(std::max(corners.size(), node.tri_count));
+        prims.resize(std::max(prims.size(), node.tri_count));
         for (std::size_t k = 0; k < node.tri_count; ++k) {
+            prims[k] = std::int32_t(scene_.prims[node.tris[k]]);
             const Triangle& tri = scene_.triangles[node.tris[k]];
             const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
             for (int c = 0; c < 3; ++c)
@@ -523,7 +534,8 @@ class Recursion {
     /// trace_rays does for its ray: a hit shortens its t_far for the next triangle, and an
     /// any-hit ray stops at its first hit. Returns the triangle tests.
     std::uint64_t trace_ray_groups(const Node& node, const std::vector<TriangleCorners>& tris,
-                                   std::size_t first, std::size_t end) {
+                                   const std::vector<std::int32_t>& prims, std::size_t first,
+                                   std::size_t end) {
         const RayStream& stream = batch_.stream;
         std::uint64_t tests = 0;
         for (std::size_t g = first; g != end; ++g) {
@@ -538,9 +550,11 @@ class Recursion {
             const __m256 tmin = load(stream.tmin);
             // Each lane's t_far, and its hit: the triangle's place in the leaf (-1: none), u, v.
             alignas(32) float t_far[8], u[8] = {}, v[8] = {};
-            alignas(32) std::int32_t hit[8];
+            alignas(32) std::int32_t hit[8], current[8];  // current: see kSkipsCurrentHit
             _mm256_store_ps(t_far, load(stream.t_far));
             std::fill_n(hit, 8, -1);
+            for (int l = 0; l < 8; ++l)
+                current[l] = l < n ? batch_.hits[stream.id[i + std::size_t(l)]].prim : -1;
             unsigned active = (1u << n) - 1;
             if constexpr (Q == Query::any)
                 active &= ~unsigned(_mm256_movemask_ps(
@@ -549,8 +563,16 @@ class Recursion {
             std::uint32_t tested[8];
             std::fill_n(tested, 8, std::uint32_t(node.tri_count));
             for (std::size_t k = 0; k < node.tri_count && active; ++k) {
+                const std::int32_t prim = prims[k];
+                unsigned candidates = active;
+                if constexpr (kSkipsCurrentHit)
+                    candidates &=
+                        ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                            _mm256_set1_epi32(prim),
+                            _mm256_load_si256(reinterpret_cast<__m256i*>(current))))));
+                if (!candidates) continue;
                 TriangleLanes8 lanes;
-                intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), active, lanes);
+                intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), candidates, lanes);
                 unsigned hits = 0;
                 if (lanes.accepted) {  // t <= t_far: the lane's ray hits nearer
                     const __m256 take = lane_mask(lanes.accepted);
@@ -563,6 +585,8 @@ class Recursion {
                     update(v, _mm256_mul_ps(_mm256_load_ps(lanes.w), inv_det));
                     update(reinterpret_cast<float*>(hit),
                            _mm256_castsi256_ps(_mm256_set1_epi32(std::int32_t(k))));
+                    update(reinterpret_cast<float*>(current),
+                           _mm256_castsi256_ps(_mm256_set1_epi32(prim)));
                     hits = lanes.accepted;
                 }
                 for (unsigned pending = lanes.scalar; pending; pending &= pending - 1) {
@@ -573,6 +597,7 @@ class Recursion {
                                             stream.tmin[i + std::size_t(l)], t_far[l], h))
                         continue;
                     t_far[l] = h.t, u[l] = h.u, v[l] = h.v, hit[l] = std::int32_t(k);
+                    current[l] = prim;
                     hits |= 1u << l;
                 }
                 if constexpr (Q == Query::any) {
@@ -616,6 +641,7 @@ class Recursion {
             const std::uint32_t r = stream.id[i];
             const float tmin = stream.tmin[i];
             const WatertightRay wray = make_watertight_ray(stream.ray(i));
+            std::int32_t current = batch_.hits[r].prim;  // see skips_current_hit
             std::size_t tested = node.tri_count;
             for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
                 TriangleLanes8 lanes;
@@ -626,9 +652,13 @@ class Recursion {
                      pending &= pending - 1) {
                     const int lane = std::countr_zero(pending);
                     const std::size_t k = 8 * b + std::size_t(lane);
+                    const auto prim = std::int32_t(scene_.prims[node.tris[k]]);
                     TriangleHit hit;
-                    if (!resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit)) continue;
+                    if ((kSkipsCurrentHit && prim == current) ||
+                        !resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit))
+                        continue;
                     record_hit(node, r, node.tris[k], hit);
+                    current = prim;
                     if constexpr (Q == Query::any) {
                         t_far = -kInfinity;
                         tested = k + 1;
@@ -659,6 +689,14 @@ class Recursion {
         batch_.hits[r] = {hit.t, std::int32_t(scene_.prims[t]), hit.u, hit.v};
         obs_.hit(r, node);
     }
+
+    /// A closest-hit ray skips the triangle it has already hit (another piece of a pre-split
+    /// triangle, in this leaf or a later one): the test depends only on the ray and the
+    /// triangle, so with t_far at that hit it would accept the same t, u, v again, which
+    /// changes nothing, after a double-precision refinement when the triangle is large and
+    /// near (its distance bound is loose). A tie with another triangle in between makes that
+    /// one the current hit, so the re-test then runs, as before.
+    static constexpr bool kSkipsCurrentHit = Q == Query::closest;
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.
     static constexpr std::size_t kParallelLeafTests = 8192;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
@@ -19,6 +20,7 @@
 #include "progress.h"
 #include "render/render_memory.h"
 #include "scene/scene_paths.h"
+#include "trace/ray_file.h"
 #include "util/error.h"
 #include "util/output_file.h"
 
@@ -38,6 +40,7 @@ struct BenchOptions {
     bool quiet = false;
     std::uint32_t seed = 1;
     std::string json_path, markdown_path;
+    std::string rays_dir;  // --write-rays
     // --dynamic (bench_dynamic.h): the frames of an animation instead of still frames.
     bool dynamic = false;
     DynamicBenchOptions animation;
@@ -236,6 +239,13 @@ void run(const BenchOptions& o) {
     check_memory(o, variants.size());
     check_writable(o.json_path, "--json");
     check_writable(o.markdown_path, "--markdown");
+    if (!o.rays_dir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(o.rays_dir, ec);
+        if (ec || !std::filesystem::is_directory(o.rays_dir))
+            throw InputError("--write-rays " + o.rays_dir + ": cannot create this directory" +
+                             (ec ? " (" + ec.message() + ")" : std::string()));
+    }
     const bool named = !o.scenes.empty();
     const std::vector<BenchScene> scenes =
         resolve_bench_scenes(named ? o.scenes : default_bench_scene_names(),
@@ -285,6 +295,10 @@ void run(const BenchOptions& o) {
         const std::vector<Triangle> triangles = gather_triangles(scene);
         for (const SetChoice& set : sets) {
             const std::vector<Ray> rays = make_rays(bench_rays, set);
+            if (!o.rays_dir.empty())  // for `edacrt trace` of one set alone
+                write_rays(std::filesystem::path(o.rays_dir) /
+                               (bench_scene.name + "_" + set.name + ".rays"),
+                           rays);
             const Query query = set.kind == RaySetKind::ao || set.kind == RaySetKind::shadow
                                     ? Query::any
                                     : Query::closest;
@@ -385,6 +399,9 @@ std::function<void()> add_bench_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--json", o.json_path, "write every measurement and the machine here");
     command->add_option("--markdown", o.markdown_path, "write the table as markdown here");
+    command->add_option("--write-rays", o.rays_dir,
+                        "also write each set's rays to DIR/SCENE_SET.rays (for edacrt trace; "
+                        "any-hit sets are ao and shadow)");
     const std::string dynamic = "Dynamic scenes (--dynamic)";
     command
         ->add_flag("--dynamic", o.dynamic,

@@ -124,6 +124,29 @@ TEST_F(BenchCli, InteriorsAreViewedFromInside) {
     EXPECT_FALSE(scenes[1]["view"]["inside"].get<bool>()) << scenes[1].dump();
 }
 
+TEST_F(BenchCli, WritesEachSetsRaysForTrace) {
+    const auto result = test::run_cli(
+        "bench --scene cornell --width 12 --height 8 --spp 1 --sets camera,ao --methods edacrt "
+        "--repeat 1 --write-rays " +
+        path("rays") + " --json " + path("bench.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json json = read_json("bench.json");
+    for (const char* set : {"camera-1spp", "ao"}) {
+        const std::string rays = path(std::string("rays/cornell_") + set + ".rays");
+        ASSERT_TRUE(std::filesystem::exists(rays)) << rays;
+        std::uint64_t count = 0;
+        for (const nlohmann::json& row : json["results"])
+            if (row["set"] == set) count = row["rays"].get<std::uint64_t>();
+        EXPECT_GT(count, 0u);
+        EXPECT_EQ(std::filesystem::file_size(rays), 32 * count);  // 32-byte ray records
+        // `edacrt trace` takes them as they are.
+        const auto trace = test::run_cli("trace --scene builtin:cornell --rays " + rays +
+                                         " --out " + path("hits") + " -q");
+        EXPECT_EQ(trace.exit_code, 0) << trace.output;
+        EXPECT_EQ(std::filesystem::file_size(path("hits")), 16 * count);
+    }
+}
+
 TEST_F(BenchCli, BadParametersFailWithAMessage) {
     const std::string quick = "bench --scene cornell --width 8 --height 8 --repeat 1 ";
     struct Case {
@@ -139,6 +162,7 @@ TEST_F(BenchCli, BadParametersFailWithAMessage) {
         {"bench --scene " + path("missing.obj"), "neither a known scene name"},
         {quick + "--json " + path("no-dir/out.json"), "--json"},
         {quick + "--markdown " + path("no-dir/out.md"), "--markdown"},
+        {quick + "--write-rays /dev/null/rays", "--write-rays"},
         {"bench --scene cornell --width 16384 --height 16384 --spp 1,4", "choose a smaller"},
     };
     for (const Case& c : cases) {

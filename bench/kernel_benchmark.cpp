@@ -135,6 +135,7 @@ void sampling_scalar(benchmark::State& state) {
 struct Leaf {
     std::vector<Triangle> triangles;
     TriangleBlock8 blocks[2];
+    TriangleCorners corners[16];
     std::vector<Ray> rays;
 };
 
@@ -147,7 +148,10 @@ const Leaf& leaf() {
             const Triangle& t = l.triangles[k];
             const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
             for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
+                for (int a = 0; a < 3; ++a) {
+                    l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
+                    l.corners[k].p[c][a] = (*corners[c])[a];
+                }
         }
         std::mt19937 rng(2);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -175,6 +179,31 @@ void leaf8(benchmark::State& state) {
         benchmark::DoNotOptimize(lanes);
     }
     state.SetItemsProcessed(16 * state.iterations());
+}
+
+void leaf_rays8(benchmark::State& state) {
+    const Leaf& l = leaf();
+    std::size_t i = 0;
+    for (auto _ : state) {
+        alignas(32) float lane[8][8];
+        for (int r = 0; r < 8; ++r) {
+            const Ray& ray = l.rays[(i + std::size_t(r)) & 4095];
+            for (int a = 0; a < 3; ++a) {
+                lane[a][r] = ray.org[a];
+                lane[3 + a][r] = ray.dir[a];
+            }
+            lane[6][r] = ray.tmin;
+            lane[7][r] = ray.tmax;
+        }
+        i += 8;
+        const auto v = [&](int k) { return _mm256_load_ps(lane[k]); };
+        const WatertightRays8 rays = make_watertight_rays8({v(0), v(1), v(2)}, {v(3), v(4), v(5)});
+        TriangleLanes8 lanes[16];
+        for (int k = 0; k < 16; ++k)
+            intersect_rays8(rays, l.corners[k], v(6), v(7), 0xffu, lanes[k]);
+        benchmark::DoNotOptimize(lanes);
+    }
+    state.SetItemsProcessed(128 * state.iterations());
 }
 
 void leaf_scalar(benchmark::State& state) {
@@ -237,6 +266,7 @@ BENCHMARK(filter_scalar)->Arg(4096)->Arg(1 << 20)->UseRealTime();
 BENCHMARK(sampling8);
 BENCHMARK(sampling_scalar);
 BENCHMARK(leaf8);
+BENCHMARK(leaf_rays8);
 BENCHMARK(leaf_scalar);
 BENCHMARK(binning);
 BENCHMARK(partition_triangles)->UseRealTime();

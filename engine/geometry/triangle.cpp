@@ -1,6 +1,10 @@
 #include "geometry/triangle.h"
 
+#include <algorithm>
+#include <cmath>
 #include <glm/geometric.hpp>
+#include <iterator>
+#include <limits>
 
 namespace edacrt {
 namespace {
@@ -11,16 +15,16 @@ bool exact_difference(float a, float b) {
     return difference + double(b) == double(a) && double(a) - difference == double(b);
 }
 
-/// Whether the corners' differences from the origin and from each other are exact in double.
-bool differences_exact(const glm::vec3& org, const Triangle& tri) {
-    for (int axis = 0; axis < 3; ++axis)
-        if (!exact_difference(tri.p0[axis], org[axis]) ||
-            !exact_difference(tri.p1[axis], org[axis]) ||
-            !exact_difference(tri.p2[axis], org[axis]) ||
-            !exact_difference(tri.p1[axis], tri.p0[axis]) ||
-            !exact_difference(tri.p2[axis], tri.p0[axis]))
-            return false;
-    return true;
+/// Whether the differences of finite floats of magnitude at most m that are zero or at least
+/// m 2^-26 are all exact in double: all such values are multiples of 2^(e - 49), e the
+/// exponent of m (their ulps), and any difference is below 2^(e + 2), so it takes at most 51
+/// significant bits.
+bool close_in_magnitude(const double (&x)[4]) {
+    double m = 0.0;
+    for (const double v : x) m = std::max(m, std::abs(v));
+    if (!(m < std::numeric_limits<double>::infinity())) return false;
+    return std::all_of(std::begin(x), std::end(x),
+                       [&](double v) { return v == 0.0 || std::abs(v) >= m * 0x1p-26; });
 }
 
 /// The unnormalised normal in double. The corners are floats, so their differences are exact
@@ -89,6 +93,20 @@ bool sheared_hit(const ShearedTriangle<double>& s, double t, TriangleHit& out) {
 }
 
 }  // namespace
+
+bool differences_exact(const glm::vec3& org, const Triangle& tri) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const double x[4] = {org[axis], tri.p0[axis], tri.p1[axis], tri.p2[axis]};
+        if (close_in_magnitude(x)) continue;  // the usual case, without the five checks
+        if (!exact_difference(tri.p0[axis], org[axis]) ||
+            !exact_difference(tri.p1[axis], org[axis]) ||
+            !exact_difference(tri.p2[axis], org[axis]) ||
+            !exact_difference(tri.p1[axis], tri.p0[axis]) ||
+            !exact_difference(tri.p2[axis], tri.p0[axis]))
+            return false;
+    }
+    return true;
+}
 
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
     const glm::dvec3 org(r.org);

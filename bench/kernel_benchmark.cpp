@@ -152,6 +152,7 @@ const Leaf& leaf() {
                     l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
                     l.corners[k].p[c][a] = (*corners[c])[a];
                 }
+            for (int c = 0; c < 3; ++c) l.corners[k].p[c][3] = 0.0f;
         }
         std::mt19937 rng(2);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);

@@ -399,15 +399,17 @@ std::function<void()> add_bench_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--json", o.json_path, "write every measurement and the machine here");
     command->add_option("--markdown", o.markdown_path, "write the table as markdown here");
-    command->add_option("--write-rays", o.rays_dir,
-                        "also write each set's rays to DIR/SCENE_SET.rays (for edacrt trace; "
-                        "any-hit sets are ao and shadow)");
+    CLI::Option* write_rays =
+        command->add_option("--write-rays", o.rays_dir,
+                            "also write each set's rays to DIR/SCENE_SET.rays (for edacrt trace; "
+                            "any-hit sets are ao and shadow)");
     const std::string dynamic = "Dynamic scenes (--dynamic)";
     command
         ->add_flag("--dynamic", o.dynamic,
                    "animate the scenes (default: bunny, sponza) and time every method frame by "
                    "frame on camera rays: update (bvh and embree: rebuild, refit; embree: "
                    "dynamic; edacrt, dacrt: none) + trace, and a sweep of rays per triangle")
+        ->excludes(write_rays)  // its frames are camera rays made per frame
         ->group(dynamic);
     command->add_option("--animate", o.animation.animation, "the animation (see render --help)")
         ->capture_default_str()

@@ -163,6 +163,7 @@ TEST_F(BenchCli, BadParametersFailWithAMessage) {
         {quick + "--json " + path("no-dir/out.json"), "--json"},
         {quick + "--markdown " + path("no-dir/out.md"), "--markdown"},
         {quick + "--write-rays /dev/null/rays", "--write-rays"},
+        {quick + "--dynamic --write-rays " + path("rays"), "--write-rays"},
         {"bench --scene cornell --width 16384 --height 16384 --spp 1,4", "choose a smaller"},
     };
     for (const Case& c : cases) {

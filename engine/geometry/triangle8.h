@@ -4,7 +4,8 @@
 // the float path's operations in the same order (max_ps with swapped operands is std::max),
 // and every lane the float path cannot decide alone (an uncertain edge, an untrusted
 // distance) handed back to the scalar test, which then takes its double-precision path. The
-// caller resolves the lanes in triangle order, so its hits are those of the scalar loop.
+// callers resolve the lanes in each ray's triangle order, so their hits are those of the
+// scalar loop.
 #include <immintrin.h>
 
 #include "geometry/triangle.h"

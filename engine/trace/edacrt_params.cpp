@@ -108,7 +108,9 @@ const std::array<ParamInfo, 18> kParams = {
         "small-nodes", "small nodes",
         "How nodes with at most sample-threshold rays estimate alpha: every-ray tests all their "
         "rays (exact, 2(K-1) box tests each), capped draws at most sample-count as large nodes "
-        "do, surface-area uses area ratios and the direction-sign order.",
+        "do, surface-area uses area ratios and the direction-sign order, scaled draws one ray "
+        "in 16 (at least one, at most sample-count), so sampling costs about half what filtering "
+        "the node's rays into both children costs.",
         kSmallNodes),
     choice<&EdacrtParams::order>(
         "order", "traversal order",

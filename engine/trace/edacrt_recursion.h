@@ -368,15 +368,17 @@ class Recursion {
         [[maybe_unused]] auto timer = obs_.time(Phase::sampling, node.depth);
         // Large nodes, and small ones under the `capped` policy, draw sample_count rays (with
         // replacement) from a generator seeded by the node, so a batch traces the same way
-        // every time; otherwise every ray is a sample.
+        // every time; small ones under `scaled` draw one in kScaledSampleShare; otherwise
+        // every ray is a sample.
         const bool draw =
             !small || p_.small_nodes == SmallNodes::scaled ||
             (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
-        const std::uint32_t samples = !draw ? std::uint32_t(node.ray_count)
-                                      : small && p_.small_nodes == SmallNodes::scaled
-                                          ? std::uint32_t(std::clamp<std::size_t>(
-                                                node.ray_count / kScaledSampleShare, 1, p_.sample_count))
-                                          : p_.sample_count;
+        const std::uint32_t samples =
+            !draw ? std::uint32_t(node.ray_count)
+            : small && p_.small_nodes == SmallNodes::scaled
+                ? std::uint32_t(std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1,
+                                                        p_.sample_count))
+                : p_.sample_count;
         const int candidates = p_.bins - 1;
         const std::uint32_t node_seed = hash_combine(
             hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
@@ -523,9 +525,10 @@ class Recursion {
             prims[k] = std::int32_t(scene_.prims[node.tris[k]]);
             const Triangle& tri = scene_.triangles[node.tris[k]];
             const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
-            for (int c = 0; c < 3; ++c)
-                corners[k].p[c][0] = p[c]->x, corners[k].p[c][1] = p[c]->y,
-                corners[k].p[c][2] = p[c]->z, corners[k].p[c][3] = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                for (int a = 0; a < 3; ++a) corners[k].p[c][a] = (*p[c])[a];
+                corners[k].p[c][3] = 0.0f;  // never picked: the lanes' axes are 0, 1, 2
+            }
         }
     }
 
@@ -641,7 +644,7 @@ class Recursion {
             const std::uint32_t r = stream.id[i];
             const float tmin = stream.tmin[i];
             const WatertightRay wray = make_watertight_ray(stream.ray(i));
-            std::int32_t current = batch_.hits[r].prim;  // see skips_current_hit
+            std::int32_t current = kSkipsCurrentHit ? batch_.hits[r].prim : -1;
             std::size_t tested = node.tri_count;
             for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
                 TriangleLanes8 lanes;
@@ -652,13 +655,13 @@ class Recursion {
                      pending &= pending - 1) {
                     const int lane = std::countr_zero(pending);
                     const std::size_t k = 8 * b + std::size_t(lane);
-                    const auto prim = std::int32_t(scene_.prims[node.tris[k]]);
                     TriangleHit hit;
-                    if ((kSkipsCurrentHit && prim == current) ||
+                    if ((kSkipsCurrentHit && std::int32_t(scene_.prims[node.tris[k]]) == current) ||
                         !resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit))
                         continue;
                     record_hit(node, r, node.tris[k], hit);
-                    current = prim;
+                    if constexpr (kSkipsCurrentHit)
+                        current = std::int32_t(scene_.prims[node.tris[k]]);
                     if constexpr (Q == Query::any) {
                         t_far = -kInfinity;
                         tested = k + 1;
@@ -691,11 +694,13 @@ class Recursion {
     }
 
     /// A closest-hit ray skips the triangle it has already hit (another piece of a pre-split
-    /// triangle, in this leaf or a later one): the test depends only on the ray and the
-    /// triangle, so with t_far at that hit it would accept the same t, u, v again, which
-    /// changes nothing, after a double-precision refinement when the triangle is large and
-    /// near (its distance bound is loose). A tie with another triangle in between makes that
-    /// one the current hit, so the re-test then runs, as before.
+    /// triangle, in this leaf or a later one), which for a large triangle near the eye (a
+    /// loose float distance bound) saves a double-precision refinement. The test depends only
+    /// on the ray, the triangle and [tmin, t_far], and t_far is that hit's t (a ray's t_far
+    /// changes only with its hit, RayStream), so the re-test either rejects or accepts the
+    /// identical t, u, v: either way the hit stays. A tie with another triangle in between
+    /// makes that one the current hit, and the re-test then runs as before. A skipped pair
+    /// still counts as a triangle test in the statistics (the leaf examined it).
     static constexpr bool kSkipsCurrentHit = Q == Query::closest;
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.

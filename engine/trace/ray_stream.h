@@ -19,8 +19,9 @@ struct RayStream {
     float* org[3];
     float* dir[3];
     float* tmin;
-    float* t_far;  // the closest hit so far; -inf once an any-hit ray is done, which removes it
-                   // from every later filter and leaf
+    float* t_far;  // tmax, then the t of the ray's hit (changed only with it: the leaves'
+                   // kSkipsCurrentHit relies on that); -inf once an any-hit ray is done, which
+                   // removes it from every later filter and leaf
     std::uint32_t* id;
 
     /// Bytes per ray: origin, direction, tmin, t_far and the id.

@@ -148,11 +148,8 @@ const Leaf& leaf() {
             const Triangle& t = l.triangles[k];
             const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
             for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) {
-                    l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
-                    l.corners[k].p[c][a] = (*corners[c])[a];
-                }
-            for (int c = 0; c < 3; ++c) l.corners[k].p[c][3] = 0.0f;
+                for (int a = 0; a < 3; ++a) l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
+            l.corners[k] = make_triangle_corners(t);
         }
         std::mt19937 rng(2);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);

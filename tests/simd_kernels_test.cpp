@@ -122,9 +122,35 @@ Triangle awkward_triangle(std::mt19937& rng) {
     return tri;
 }
 
+/// What the eight-lane test decided for lane l, against the scalar test of the same pair:
+/// a lane it decided must match intersect_triangle bit for bit; a lane it handed back is
+/// counted.
+struct LaneOutcomes {
+    int accepted = 0, rejected = 0, handed_back = 0;
+};
+
+void check_lane(const TriangleLanes8& lanes, unsigned valid, int l, const WatertightRay& wray,
+                const Triangle& tri, const Ray& ray, LaneOutcomes& outcomes) {
+    if (!((valid >> l) & 1) || ((lanes.scalar >> l) & 1)) {
+        outcomes.handed_back += (lanes.scalar >> l) & 1;
+        return;
+    }
+    TriangleHit hit;
+    const bool scalar = intersect_triangle(wray, tri, ray.tmin, ray.tmax, hit);
+    ASSERT_EQ(scalar, ((lanes.accepted >> l) & 1) != 0);
+    if (!scalar) {
+        ++outcomes.rejected;
+        return;
+    }
+    ++outcomes.accepted;
+    ASSERT_TRUE(same_bits(hit.t, lanes.t[l]));
+    ASSERT_TRUE(same_bits(hit.u, lanes.v[l] * lanes.inv_det[l]));
+    ASSERT_TRUE(same_bits(hit.v, lanes.w[l] * lanes.inv_det[l]));
+}
+
 TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
     std::mt19937 rng(11);
-    int accepted = 0, rejected = 0, handed_back = 0;
+    LaneOutcomes outcomes;
     for (int round = 0; round < 40000; ++round) {
         // Rays aimed at a triangle's corner, edge or inside, or anywhere.
         TriangleBlock8 block;
@@ -147,39 +173,22 @@ TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
         intersect_triangle8(wray, block, valid, ray.tmin, ray.tmax, lanes);
         ASSERT_EQ(lanes.accepted & lanes.scalar, 0u);
         ASSERT_EQ((lanes.accepted | lanes.scalar) & ~valid, 0u);
-        for (int l = 0; l < 8; ++l) {
-            if (!((valid >> l) & 1) || ((lanes.scalar >> l) & 1)) {
-                handed_back += (lanes.scalar >> l) & 1;
-                continue;
-            }
-            TriangleHit hit;
-            const bool scalar = intersect_triangle(wray, tris[l], ray.tmin, ray.tmax, hit);
-            ASSERT_EQ(scalar, ((lanes.accepted >> l) & 1) != 0) << "round " << round;
-            if (!scalar) {
-                ++rejected;
-                continue;
-            }
-            ++accepted;
-            ASSERT_TRUE(same_bits(hit.t, lanes.t[l]));
-            ASSERT_TRUE(same_bits(hit.u, lanes.v[l] * lanes.inv_det[l]));
-            ASSERT_TRUE(same_bits(hit.v, lanes.w[l] * lanes.inv_det[l]));
-        }
+        for (int l = 0; l < 8; ++l)
+            ASSERT_NO_FATAL_FAILURE(check_lane(lanes, valid, l, wray, tris[l], ray, outcomes))
+                << "round " << round << " lane " << l;
     }
     // The float path decides most lanes; the awkward ones go back to the scalar test.
-    EXPECT_GT(accepted, 2000);
-    EXPECT_GT(rejected, 100000);
-    EXPECT_GT(handed_back, 1000);
+    EXPECT_GT(outcomes.accepted, 2000);
+    EXPECT_GT(outcomes.rejected, 100000);
+    EXPECT_GT(outcomes.handed_back, 1000);
 }
 
 TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides) {
     std::mt19937 rng(13);
-    int accepted = 0, rejected = 0, handed_back = 0;
+    LaneOutcomes outcomes;
     for (int round = 0; round < 40000; ++round) {
         const Triangle tri = awkward_triangle(rng);
-        TriangleCorners corners;
-        const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
-        for (int c = 0; c < 3; ++c)
-            for (int a = 0; a < 4; ++a) corners.p[c][a] = a < 3 ? (*p[c])[a] : 0.0f;
+        const TriangleCorners corners = make_triangle_corners(tri);
         // Eight rays of any directions (so lanes differ in their axes), most aimed at the
         // triangle's corners, edges or inside.
         Ray rays[8];
@@ -218,26 +227,13 @@ TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides)
             ASSERT_EQ(k[2][l], wray.kz);
             ASSERT_TRUE(same_bits(sx[l], wray.sx) && same_bits(sy[l], wray.sy) &&
                         same_bits(sz[l], wray.sz));
-            if (!((valid >> l) & 1) || ((lanes.scalar >> l) & 1)) {
-                handed_back += (lanes.scalar >> l) & 1;
-                continue;
-            }
-            TriangleHit hit;
-            const bool scalar = intersect_triangle(wray, tri, rays[l].tmin, rays[l].tmax, hit);
-            ASSERT_EQ(scalar, ((lanes.accepted >> l) & 1) != 0) << "round " << round;
-            if (!scalar) {
-                ++rejected;
-                continue;
-            }
-            ++accepted;
-            ASSERT_TRUE(same_bits(hit.t, lanes.t[l]));
-            ASSERT_TRUE(same_bits(hit.u, lanes.v[l] * lanes.inv_det[l]));
-            ASSERT_TRUE(same_bits(hit.v, lanes.w[l] * lanes.inv_det[l]));
+            ASSERT_NO_FATAL_FAILURE(check_lane(lanes, valid, l, wray, tri, rays[l], outcomes))
+                << "round " << round << " lane " << l;
         }
     }
-    EXPECT_GT(accepted, 1000);
-    EXPECT_GT(rejected, 50000);
-    EXPECT_GT(handed_back, 1000);
+    EXPECT_GT(outcomes.accepted, 1000);
+    EXPECT_GT(outcomes.rejected, 50000);
+    EXPECT_GT(outcomes.handed_back, 1000);
 }
 
 /// A stream of `n` awkward rays, some already finished (t_far = -inf).

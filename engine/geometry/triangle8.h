@@ -158,6 +158,16 @@ struct TriangleCorners {
     alignas(16) float p[3][4];
 };
 
+inline TriangleCorners make_triangle_corners(const Triangle& tri) {
+    const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
+    TriangleCorners corners;
+    for (int c = 0; c < 3; ++c) {
+        for (int a = 0; a < 3; ++a) corners.p[c][a] = (*p[c])[a];
+        corners.p[c][3] = 0.0f;  // never picked: the lanes' axes are 0, 1, 2
+    }
+    return corners;
+}
+
 /// make_watertight_ray for eight rays: each lane's axes kx, ky, kz (as permute indices), its
 /// origin on those axes, its shear and |dir[kx]|, |dir[ky]|.
 struct WatertightRays8 {

@@ -373,12 +373,12 @@ class Recursion {
         const bool draw =
             !small || p_.small_nodes == SmallNodes::scaled ||
             (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
-        const std::uint32_t samples =
-            !draw ? std::uint32_t(node.ray_count)
-            : small && p_.small_nodes == SmallNodes::scaled
-                ? std::uint32_t(std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1,
-                                                        p_.sample_count))
-                : p_.sample_count;
+        std::uint32_t samples = p_.sample_count;
+        if (!draw)
+            samples = std::uint32_t(node.ray_count);
+        else if (small && p_.small_nodes == SmallNodes::scaled)
+            samples = std::uint32_t(
+                std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1, p_.sample_count));
         const int candidates = p_.bins - 1;
         const std::uint32_t node_seed = hash_combine(
             hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
@@ -523,12 +523,7 @@ class Recursion {
         prims.resize(std::max(prims.size(), node.tri_count));
         for (std::size_t k = 0; k < node.tri_count; ++k) {
             prims[k] = std::int32_t(scene_.prims[node.tris[k]]);
-            const Triangle& tri = scene_.triangles[node.tris[k]];
-            const glm::vec3* p[3] = {&tri.p0, &tri.p1, &tri.p2};
-            for (int c = 0; c < 3; ++c) {
-                for (int a = 0; a < 3; ++a) corners[k].p[c][a] = (*p[c])[a];
-                corners[k].p[c][3] = 0.0f;  // never picked: the lanes' axes are 0, 1, 2
-            }
+            corners[k] = make_triangle_corners(scene_.triangles[node.tris[k]]);
         }
     }
 

@@ -552,7 +552,9 @@ class Recursion {
             _mm256_store_ps(t_far, load(stream.t_far));
             std::fill_n(hit, 8, -1);
             for (int l = 0; l < 8; ++l)
-                current[l] = l < n ? batch_.hits[stream.id[i + std::size_t(l)]].prim : -1;
+                current[l] = kSkipsCurrentHit && l < n
+                                 ? batch_.hits[stream.id[i + std::size_t(l)]].prim
+                                 : -1;
             unsigned active = (1u << n) - 1;
             if constexpr (Q == Query::any)
                 active &= ~unsigned(_mm256_movemask_ps(

@@ -2,7 +2,8 @@
 // box, permuted so that its passing rays come first, and stored twice, at the passing end and
 // at the rejected end of the range; the range is read from whichever end has less room, so
 // both stores always land on rays already read (the two-ended vectorised partition of
-// Bramas 2017, used by vxsort). Nine arrays move together, so a node's rays stay contiguous.
+// Bramas 2017, used by vxsort). A block that passes or misses whole is stored once, at its
+// end (camera rays: most blocks). Nine arrays move together, so a node's rays stay contiguous.
 #include "trace/ray_filter.h"
 
 #include <immintrin.h>
@@ -55,7 +56,7 @@ Block load(const Arrays& s, std::size_t i) {
     return b;
 }
 
-unsigned passes(const Block& b, const Aabb8& box) {
+[[gnu::always_inline]] inline unsigned passes(const Block& b, const Aabb8& box) {
     const __m256 one = _mm256_set1_ps(1.0f);  // make_slab_ray's 1/dir, with its +-inf for +-0
     const SlabRay8 ray{
         {b.v[0], b.v[1], b.v[2]},
@@ -77,6 +78,31 @@ struct Pending {
         Block b;
         for (int k = 0; k < kArrays; ++k) b.v[k] = _mm256_load_ps(a[k] + i);
         return b;
+    }
+};
+
+/// The box test's verdicts on an end's next unread blocks, in the order that end reads them.
+struct Lookahead {
+    static constexpr int kAhead = 8;
+    std::uint8_t masks[kAhead];
+    int next = 0, count = 0;
+    /// Tests up to kAhead blocks of the unread rays [lo, hi): upwards from lo, or downwards
+    /// from hi.
+    void test(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
+        next = count = 0;
+        for (; count < kAhead && hi - lo >= 8; ++count)
+            if (upwards) {
+                masks[count] = std::uint8_t(passes(load(s, lo), box));
+                lo += 8;
+            } else {
+                hi -= 8;
+                masks[count] = std::uint8_t(passes(load(s, hi), box));
+            }
+    }
+    /// The next block's verdict, testing ahead first if none is left.
+    unsigned take(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
+        if (next == count) test(s, box, lo, hi, upwards);
+        return masks[next++];
     }
 };
 
@@ -109,23 +135,36 @@ std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t en
     // each side, enough for a full store of either kind.
     const Block first = load(s, begin), last = load(s, end - 8);
     std::size_t read_l = begin + 8, read_r = end - 8, write_l = begin, write_r = end;
+    // Each end's next blocks are tested kAhead at a time before any of them moves: the box
+    // tests then depend on no cursor and overlap, where one block at a time each store waited
+    // for its own test. A block is tested while unread, so its data is still there when it
+    // moves; a tested block the other end reaches first is never moved from this end.
+    Lookahead left, right;
     while (read_r - read_l >= 8) {
         Block b;
+        unsigned mask;
         if (read_l - write_l <= write_r - read_r) {
+            mask = left.take(s, box8, read_l, read_r, true);
             b = load(s, read_l);
             read_l += 8;
         } else {
+            mask = right.take(s, box8, read_l, read_r, false);
             read_r -= 8;
             b = load(s, read_r);
         }
-        const unsigned mask = passes(b, box8);
-        const __m256i order =
-            _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kPassFirst[mask])));
         const int passed = std::popcount(mask);
-        for (int k = 0; k < kArrays; ++k) {
-            const __m256 v = _mm256_permutevar8x32_ps(b.v[k], order);
-            _mm256_storeu_ps(s.a[k] + write_l, v);
-            _mm256_storeu_ps(s.a[k] + write_r - 8, v);
+        if (mask == 0xff) {  // a whole block to one end: not permuted, stored once
+            for (int k = 0; k < kArrays; ++k) _mm256_storeu_ps(s.a[k] + write_l, b.v[k]);
+        } else if (mask == 0) {
+            for (int k = 0; k < kArrays; ++k) _mm256_storeu_ps(s.a[k] + write_r - 8, b.v[k]);
+        } else {
+            const __m256i order =
+                _mm256_cvtepu8_epi32(_mm_cvtsi64_si128(std::int64_t(kPassFirst[mask])));
+            for (int k = 0; k < kArrays; ++k) {
+                const __m256 v = _mm256_permutevar8x32_ps(b.v[k], order);
+                _mm256_storeu_ps(s.a[k] + write_l, v);
+                _mm256_storeu_ps(s.a[k] + write_r - 8, v);
+            }
         }
         write_l += std::size_t(passed);
         write_r -= std::size_t(8 - passed);

@@ -536,9 +536,11 @@ class Recursion {
                                    std::size_t end) {
         const RayStream& stream = batch_.stream;
         std::uint64_t tests = 0;
+        const std::size_t rays_end = node.ray_begin + node.ray_count;
         for (std::size_t g = first; g != end; ++g) {
             const std::size_t i = node.ray_begin + 8 * g;
             const int n = int(std::min<std::size_t>(8, node.ray_count - 8 * g));
+            prefetch_hits(std::min(i + 8, rays_end), std::min(i + 16, rays_end));
             const __m256i in_group =
                 _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
             const auto load = [&](const float* a) { return _mm256_maskload_ps(a + i, in_group); };
@@ -620,6 +622,18 @@ class Recursion {
         return tests;
     }
 
+    /// Starts loading the hits of the rays at stream positions [begin, end), which a leaf
+    /// reads (the current hit) and writes, so that the random access by ray number overlaps
+    /// the tests of the rays before them.
+    void prefetch_hits(std::size_t begin, std::size_t end) const {
+        for (std::size_t i = begin; i != end; ++i)
+            _mm_prefetch(reinterpret_cast<const char*>(&batch_.hits[batch_.stream.id[i]]),
+                         _MM_HINT_T0);
+    }
+
+    /// trace_rays loads the hit this many rays ahead.
+    static constexpr std::size_t kPrefetchRays = 4;
+
     /// Bit l of a mask to all-ones in lane l.
     static __m256 lane_mask(unsigned mask) {
         const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -636,6 +650,7 @@ class Recursion {
         const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
         std::uint64_t tests = 0;
         for (std::size_t i = begin; i != end; ++i) {
+            prefetch_hits(std::min(i + kPrefetchRays, end), std::min(i + kPrefetchRays + 1, end));
             float& t_far = stream.t_far[i];
             if (Q == Query::any && t_far == -kInfinity) continue;
             const std::uint32_t r = stream.id[i];

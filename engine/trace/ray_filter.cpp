@@ -100,9 +100,15 @@ struct Lookahead {
             }
     }
     /// The next block's verdict, testing ahead first if none is left.
-    unsigned take(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
+    unsigned peek(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
         if (next == count) test(s, box, lo, hi, upwards);
-        return masks[next++];
+        return masks[next];
+    }
+    void skip() { ++next; }
+    unsigned take(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
+        const unsigned mask = peek(s, box, lo, hi, upwards);
+        skip();
+        return mask;
     }
 };
 
@@ -120,6 +126,22 @@ std::size_t place(const Arrays& s, const Pending& p, std::size_t n, std::uint32_
 std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t end,
                               const Aabb& box) {
     const Aabb8 box8 = broadcast(box);
+    const std::size_t start = begin;
+    // Each end's next blocks are tested kAhead at a time before any of them moves: the box
+    // tests then depend on no cursor and overlap, where one block at a time each store waited
+    // for its own test. A block is tested while unread, so its data is still there when it
+    // moves; a tested block the other end reaches first is never moved from this end.
+    Lookahead left, right;
+    // Whole blocks already in place stay: passing ones at the front, missed ones at the back
+    // (two fifths of the rays filtered in Sponza's camera and shadow sets).
+    while (end - begin >= 8 && left.peek(s, box8, begin, end, true) == 0xff) {
+        left.skip();
+        begin += 8;
+    }
+    while (end - begin >= 8 && right.peek(s, box8, begin, end, false) == 0) {
+        right.skip();
+        end -= 8;
+    }
     Pending pending;
     if (end - begin < 16) {  // held aside whole, tested as two blocks
         const std::size_t n = end - begin;
@@ -127,19 +149,20 @@ std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t en
         pending.clear(n, 16);
         const std::uint32_t mask = passes(pending.block(0), box8) | passes(pending.block(8), box8)
                                                                         << 8;
-        return place(s, pending, n, mask, begin, end) - begin;
+        return place(s, pending, n, mask, begin, end) - start;
     }
     // Passing rays are written upwards from write_l, rejected ones downwards from write_r.
     // The first and last blocks wait in registers, so 16 rays of room exist between the
     // cursors and the unread middle; reading from the end with less room keeps at least 8 on
     // each side, enough for a full store of either kind.
     const Block first = load(s, begin), last = load(s, end - 8);
+    const std::uint32_t first_mask = left.take(s, box8, begin, end, true),
+                        last_mask = right.take(s, box8, begin, end, false);
     std::size_t read_l = begin + 8, read_r = end - 8, write_l = begin, write_r = end;
     // Each end's next blocks are tested kAhead at a time before any of them moves: the box
     // tests then depend on no cursor and overlap, where one block at a time each store waited
     // for its own test. A block is tested while unread, so its data is still there when it
     // moves; a tested block the other end reaches first is never moved from this end.
-    Lookahead left, right;
     while (read_r - read_l >= 8) {
         Block b;
         unsigned mask;
@@ -178,9 +201,8 @@ std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t en
         std::copy_n(s.a[k] + read_l, middle, pending.a[k] + 16);
     }
     pending.clear(16 + middle, 24);
-    const std::uint32_t mask =
-        passes(first, box8) | passes(last, box8) << 8 | passes(pending.block(16), box8) << 16;
-    return place(s, pending, 16 + middle, mask, write_l, write_r) - begin;
+    const std::uint32_t mask = first_mask | last_mask << 8 | passes(pending.block(16), box8) << 16;
+    return place(s, pending, 16 + middle, mask, write_l, write_r) - start;
 }
 
 /// A run of misplaced rays: rejected ones before the split point, or passing ones after it.

@@ -140,7 +140,9 @@ std::size_t reference_index(const std::vector<Variant>& variants) {
     return ours < variants.size() ? ours : 0;
 }
 
-/// Times every variant on `rays`, repetitions interleaved (A B C A B C ...), calling
+/// Times every variant on `rays`, repetitions interleaved and rotated (A B C, B C A, C A B,
+/// ...: each variant follows each other one equally often, so none always inherits the memory
+/// the same predecessor handed back to the system or left in the allocator), calling
 /// `frame_done` after each frame, then compares the hits of the last repetition with the
 /// reference variant's.
 SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
@@ -157,7 +159,8 @@ SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
         run.methods.back().method = v.method;
     }
     for (int r = 0; r < repeat; ++r)
-        for (std::size_t i = 0; i < variants.size(); ++i) {
+        for (std::size_t k = 0; k < variants.size(); ++k) {
+            const std::size_t i = (k + std::size_t(r)) % variants.size();
             MethodRun& m = run.methods[i];
             const auto tracer = make_tracer(variants[i].method, EdacrtParams{}, variants[i].mode);
             auto start = std::chrono::steady_clock::now();

@@ -31,16 +31,17 @@
 #include "trace/stable_partition.h"
 #include "trace/trace_stats.h"
 #include "trace/tracer.h"
+#include "util/frame_memory.h"
 #include "util/hash_random.h"
 
 namespace edacrt {
 
 /// Per-frame triangle data, in scene order.
 struct EdacrtScene {
-    std::vector<Triangle> triangles;
-    std::vector<Aabb> bounds;
-    std::vector<glm::vec3> centroids;
-    std::vector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
+    FrameVector<Triangle> triangles;
+    FrameVector<Aabb> bounds;
+    FrameVector<glm::vec3> centroids;
+    FrameVector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
     Aabb box;
 };
 

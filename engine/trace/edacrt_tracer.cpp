@@ -37,9 +37,9 @@ void EdacrtTracer::prepare_triangles() {
     // Per frame (update_scene() of an animation): in parallel, into the storage of the last
     // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece keeps its
     // whole triangle for the intersection and is binned by its clipped box's centre.
-    const std::vector<PrimReference> refs = params_.presplit != 0.0f && !triangles_.empty()
+    const FrameVector<PrimReference> refs = params_.presplit != 0.0f && !triangles_.empty()
                                                 ? presplit_references(triangles_, params_.presplit)
-                                                : std::vector<PrimReference>{};
+                                                : FrameVector<PrimReference>{};
     const bool pieces = !refs.empty();  // empty: no triangle was cut
     const std::size_t n = pieces ? refs.size() : triangles_.size();
     scene_.triangles.resize(n);

@@ -29,7 +29,7 @@ class EdacrtTracer final : public Tracer {
     /// Per-batch data, kept between batches to avoid reallocating.
     struct BatchBuffers {
         RayStreamStorage rays;
-        std::vector<std::uint32_t> tris;
+        FrameVector<std::uint32_t> tris;
         RecursionScratches scratch;  // per thread: partitions, binning, sampling, leaves
     };
 

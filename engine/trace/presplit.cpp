@@ -206,7 +206,7 @@ Aabb clipped_bounds(const Triangle& tri, const Aabb& region) {
     return widen(piece, conservative_padding(exact_bounds(tri)));
 }
 
-std::vector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra) {
+FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra) {
     std::vector<double> areas(triangles.size());
     Box scene;
     for (std::size_t i = 0; i < triangles.size(); ++i) {
@@ -225,7 +225,7 @@ std::vector<PrimReference> presplit_references(std::span<const Triangle> triangl
         return {};  // nothing to cut: the caller uses the triangles themselves
     std::vector<std::size_t> offsets(triangles.size() + 1, 0);
     for (std::size_t i = 0; i < triangles.size(); ++i) offsets[i + 1] = offsets[i] + counts[i];
-    std::vector<PrimReference> references(offsets.back(), PrimReference{Aabb{}, kUnused});
+    FrameVector<PrimReference> references(offsets.back(), PrimReference{Aabb{}, kUnused});
     const Splitter splitter(scene);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& range) {

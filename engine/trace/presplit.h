@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/triangle.h"
+#include "util/frame_memory.h"
 
 namespace edacrt {
 
@@ -29,6 +30,6 @@ Aabb clipped_bounds(const Triangle& tri, const Aabb& region);
 /// piece's box is clipped_bounds(), so the union covers conservative_bounds(tri). Empty when no
 /// triangle is cut (one reference per triangle: use the triangles). Parallel; the result is the
 /// same for any thread count.
-std::vector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra);
+FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra);
 
 }  // namespace edacrt

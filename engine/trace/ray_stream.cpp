@@ -1,14 +1,12 @@
 #include "trace/ray_stream.h"
 
-#include <sys/mman.h>
 #include <tbb/parallel_for.h>
 
-#include <cstdlib>
-#include <new>
+#include "util/frame_memory.h"
 
 namespace edacrt {
 
-void RayStreamStorage::FreeAligned::operator()(float* p) const { std::free(p); }
+void RayStreamStorage::FreeAligned::operator()(float* p) const { free_frame_memory(p); }
 
 RayStream RayStreamStorage::fill(std::span<const Ray> rays) {
     const std::size_t n = rays.size();
@@ -17,17 +15,10 @@ RayStream RayStreamStorage::fill(std::span<const Ray> rays) {
         // arrays a multiple of 4 KiB apart make the kernels' loads wait on unrelated stores to
         // the same offset of another array (4K aliasing), which doubled the filter's time.
         const std::size_t capacity = (n + 1023) / 1024 * 1024 + 112;
-        // Large streams on 2 MiB pages where the kernel allows it (transparent huge pages on
-        // request): a fresh stream is touched once per frame, and its 4 KiB page faults were
-        // a tenth of a bunny frame.
-        const std::size_t bytes = capacity * RayStream::kBytesPerRay;
-        constexpr std::size_t kHugePage = std::size_t(1) << 21;
-        const bool huge = bytes >= 2 * kHugePage;
-        const std::size_t align = huge ? kHugePage : 64;
+        // On 2 MiB pages when large: a fresh stream's 4 KiB page faults were a tenth of a bunny
+        // frame.
         data_.reset(
-            static_cast<float*>(std::aligned_alloc(align, (bytes + align - 1) / align * align)));
-        if (!data_) throw std::bad_alloc();
-        if (huge) madvise(data_.get(), bytes, MADV_HUGEPAGE);  // advice: failure changes nothing
+            static_cast<float*>(allocate_frame_memory(capacity * RayStream::kBytesPerRay, 64)));
         capacity_ = capacity;
     }
     float* base = data_.get();

@@ -27,7 +27,7 @@ namespace edacrt {
 namespace {
 
 struct Data {
-    std::vector<Triangle> triangles;
+    FrameVector<Triangle> triangles;
     std::vector<Ray> rays;  // from a sphere of radius 3 towards random points of radius 0.8
 };
 
@@ -142,7 +142,7 @@ struct Leaf {
 const Leaf& leaf() {
     static const Leaf l = [] {
         Leaf l;
-        const std::vector<Triangle>& all = data().triangles;
+        const auto& all = data().triangles;
         l.triangles.assign(all.begin(), all.begin() + 16);
         for (std::size_t k = 0; k < 16; ++k) {
             const Triangle& t = l.triangles[k];
@@ -221,7 +221,7 @@ void leaf_scalar(benchmark::State& state) {
 }
 
 void partition_triangles(benchmark::State& state) {
-    const std::vector<Triangle>& tris = data().triangles;
+    const auto& tris = data().triangles;
     const std::size_t n = tris.size();
     std::vector<glm::vec3> centroids;
     for (const Triangle& t : tris) centroids.push_back(centroid(t));
@@ -238,7 +238,7 @@ void partition_triangles(benchmark::State& state) {
 }
 
 void binning(benchmark::State& state) {
-    const std::vector<Triangle>& tris = data().triangles;
+    const auto& tris = data().triangles;
     std::vector<glm::vec3> centroids;
     std::vector<Aabb> bounds;
     for (const Triangle& t : tris) {

@@ -98,7 +98,7 @@ struct Accuracy {
 };
 
 /// Times `repeats` traces of the set (calling `traced` after each), then compares the hits.
-Accuracy measure(Tracer& tracer, const std::vector<Triangle>& triangles, const RaySet& set,
+Accuracy measure(Tracer& tracer, std::span<const Triangle> triangles, const RaySet& set,
                  const std::vector<ReferenceHit>& reference, int repeats,
                  const std::function<void()>& traced) {
     const std::vector<Ray>& rays = set.second;
@@ -158,7 +158,7 @@ double extrapolate(const std::vector<Ray>& rays,
     }
 }
 
-BruteForceEstimate estimate_brute_force(const Scene& scene, const std::vector<Triangle>& triangles,
+BruteForceEstimate estimate_brute_force(const Scene& scene, std::span<const Triangle> triangles,
                                         const std::vector<RaySet>& sets, bool naive, int repeats) {
     std::vector<Ray> rays;
     for (const RaySet& set : sets) rays.insert(rays.end(), set.second.begin(), set.second.end());
@@ -177,7 +177,7 @@ BruteForceEstimate estimate_brute_force(const Scene& scene, const std::vector<Tr
 }
 
 /// The reference hits of every set, a slice at a time so that progress can show.
-std::vector<std::vector<ReferenceHit>> compute_references(const std::vector<Triangle>& triangles,
+std::vector<std::vector<ReferenceHit>> compute_references(std::span<const Triangle> triangles,
                                                           const std::vector<RaySet>& sets,
                                                           Progress& progress) {
     std::size_t total = 0, done = 0;
@@ -209,7 +209,7 @@ void run(const AccuracyOptions& o) {
     const Scene scene = load_scene_verbose(o.common.scene);
     if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
     const Camera camera = choose_camera(scene, CameraOptions{});
-    const std::vector<Triangle> triangles = gather_triangles(scene);
+    const FrameVector<Triangle> triangles = gather_triangles(scene);
     const std::vector<RaySet> sets = make_ray_sets(scene, camera, o.rays, o.seed);
     const ProgressStyle style = progress_style(o.common.quiet);
 

@@ -145,7 +145,7 @@ std::size_t reference_index(const std::vector<Variant>& variants) {
 /// the same predecessor handed back to the system or left in the allocator), calling
 /// `frame_done` after each frame, then compares the hits of the last repetition with the
 /// reference variant's.
-SetRun run_set(const Scene& scene, const std::vector<Triangle>& triangles,
+SetRun run_set(const Scene& scene, std::span<const Triangle> triangles,
                const std::vector<Variant>& variants, const std::string& scene_name,
                const std::string& set_name, Query query, const std::vector<Ray>& rays, int threads,
                int repeat, const std::function<void()>& frame_done) {
@@ -295,7 +295,7 @@ void run(const BenchOptions& o) {
                                  {"up", vec(view.camera.up)},
                                  {"vfov_degrees", view.camera.vfov_degrees}}},
                                {"shadow_light", bench_rays.light()}});
-        const std::vector<Triangle> triangles = gather_triangles(scene);
+        const FrameVector<Triangle> triangles = gather_triangles(scene);
         for (const SetChoice& set : sets) {
             const std::vector<Ray> rays = make_rays(bench_rays, set);
             if (!o.rays_dir.empty())  // for `edacrt trace` of one set alone

@@ -107,7 +107,7 @@ DynamicSetRun run_set(AnimatedScene& animated, const std::vector<Variant>& varia
     const std::size_t ref = reference_index(variants);
     run.methods[ref].reference = true;
     std::vector<std::vector<Hit>> hits(variants.size(), std::vector<Hit>(rays.size()));
-    std::vector<Triangle> triangles;
+    FrameVector<Triangle> triangles;
     for (int f = 1; f <= frames; ++f) {
         auto start = std::chrono::steady_clock::now();
         animation.frame(animation.duration() * f / (frames + 1), scene);

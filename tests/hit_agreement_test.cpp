@@ -12,7 +12,7 @@ namespace {
 
 struct Fixture {
     Scene scene = make_builtin_scene("builtin:sphere:subdiv=3");
-    std::vector<Triangle> triangles = gather_triangles(scene);
+    FrameVector<Triangle> triangles = gather_triangles(scene);
     std::vector<Ray> rays;
     std::vector<Hit> hits;
 

@@ -23,7 +23,7 @@ int lane_count(const Bvh8Node& node) {
 }  // namespace
 
 void BvhTracer::set_scene(const Scene& scene) {
-    const std::vector<Triangle> triangles = gather_triangles(scene);
+    const FrameVector<Triangle> triangles = gather_triangles(scene);
     std::vector<BvhReference> references(triangles.size());
     for (std::size_t i = 0; i < triangles.size(); ++i)
         references[i] = {conservative_bounds(triangles[i]), std::uint32_t(i)};

@@ -49,7 +49,7 @@ class EdacrtTracer final : public Tracer {
 
     EdacrtParams params_;
     Method method_;
-    std::vector<Triangle> triangles_;  // the scene's, in scene order
+    FrameVector<Triangle> triangles_;  // the scene's, in scene order
     EdacrtScene scene_;
     BatchBuffers batch_;
 };

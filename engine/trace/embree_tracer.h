@@ -50,7 +50,7 @@ class EmbreeTracer final : public Tracer {
                              std::size_t end) const;
 
     EmbreeMode mode_;
-    std::vector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)
+    FrameVector<Triangle> triangles_;  // for the candidate filter (see embree_tracer.cpp)
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     RTCGeometry geometry_ = nullptr;  // scene_'s only geometry

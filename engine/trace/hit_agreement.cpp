@@ -10,7 +10,7 @@ namespace {
 bool same_t(float a, float b) { return std::abs(a - b) <= 1e-6f * std::abs(b); }
 
 /// Whether the ray hits triangle `prim` (at t, when `t` is given).
-bool really_hits(const std::vector<Triangle>& triangles, const Ray& ray, std::int32_t prim,
+bool really_hits(std::span<const Triangle> triangles, const Ray& ray, std::int32_t prim,
                  const float* t) {
     TriangleHit hit;
     return intersect_triangle(make_watertight_ray(ray), triangles[std::size_t(prim)], ray.tmin,
@@ -18,7 +18,7 @@ bool really_hits(const std::vector<Triangle>& triangles, const Ray& ray, std::in
            (!t || same_t(hit.t, *t));
 }
 
-bool ill_conditioned(const std::vector<Triangle>& triangles, const Ray& ray, const Hit& hit) {
+bool ill_conditioned(std::span<const Triangle> triangles, const Ray& ray, const Hit& hit) {
     if (!hit.hit()) return false;
     const float edge = std::min({hit.u, hit.v, 1.0f - hit.u - hit.v});
     const glm::vec3 n = unit_normal(triangles[std::size_t(hit.prim)]);
@@ -27,7 +27,7 @@ bool ill_conditioned(const std::vector<Triangle>& triangles, const Ray& ray, con
 
 }  // namespace
 
-Agreement compare_hits(const std::vector<Triangle>& triangles, std::span<const Ray> rays,
+Agreement compare_hits(std::span<const Triangle> triangles, std::span<const Ray> rays,
                        std::span<const Hit> expected, std::span<const Hit> got, Query query,
                        bool exact) {
     Agreement a;

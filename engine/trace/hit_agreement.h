@@ -24,7 +24,7 @@ struct Agreement {
 /// `exact` is false (Embree, whose robust mode is not watertight: README, Robustness), a
 /// difference is tolerated where either hit is within 1e-4 (barycentric) of an edge of its
 /// triangle or the ray grazes it (|cos| < 1e-3).
-Agreement compare_hits(const std::vector<Triangle>& triangles, std::span<const Ray> rays,
+Agreement compare_hits(std::span<const Triangle> triangles, std::span<const Ray> rays,
                        std::span<const Hit> expected, std::span<const Hit> got, Query query,
                        bool exact);
 

@@ -18,7 +18,7 @@ class NaiveTracer final : public Tracer {
                            TraceDetail* detail) override;
 
   private:
-    std::vector<Triangle> triangles_;
+    FrameVector<Triangle> triangles_;
 };
 
 }  // namespace edacrt

@@ -91,13 +91,13 @@ EmbreeMode parse_embree_mode(std::string_view name) {
                      "' (known: single, packet8, stream)");
 }
 
-std::vector<Triangle> gather_triangles(const Scene& scene) {
-    std::vector<Triangle> triangles;
+FrameVector<Triangle> gather_triangles(const Scene& scene) {
+    FrameVector<Triangle> triangles;
     gather_triangles(scene, triangles);
     return triangles;
 }
 
-void gather_triangles(const Scene& scene, std::vector<Triangle>& out) {
+void gather_triangles(const Scene& scene, FrameVector<Triangle>& out) {
     out.resize(scene.triangle_count());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 4096), [&](const auto& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) out[i] = scene.corners(i);

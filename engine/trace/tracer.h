@@ -12,6 +12,7 @@
 #include "scene/scene.h"
 #include "trace/edacrt_params.h"
 #include "trace/trace_stats.h"
+#include "util/frame_memory.h"
 
 namespace edacrt {
 
@@ -121,10 +122,10 @@ std::string_view embree_mode_name(EmbreeMode mode);
 EmbreeMode parse_embree_mode(std::string_view name);
 
 /// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
-std::vector<Triangle> gather_triangles(const Scene& scene);
+FrameVector<Triangle> gather_triangles(const Scene& scene);
 
 /// The same into `out`, which keeps its storage when the triangle count does not change.
-void gather_triangles(const Scene& scene, std::vector<Triangle>& out);
+void gather_triangles(const Scene& scene, FrameVector<Triangle>& out);
 
 std::string_view scene_update_name(SceneUpdate how);
 

@@ -2,8 +2,10 @@
 // box, permuted so that its passing rays come first, and stored twice, at the passing end and
 // at the rejected end of the range; the range is read from whichever end has less room, so
 // both stores always land on rays already read (the two-ended vectorised partition of
-// Bramas 2017, used by vxsort). A block that passes or misses whole is stored once, at its
-// end (camera rays: most blocks). Nine arrays move together, so a node's rays stay contiguous.
+// Bramas 2017, used by vxsort). Coherent rays move less: whole blocks already in place at
+// either end stay, and a block that passes or misses whole is stored once, unpermuted. The box
+// tests run a few blocks ahead of the moves. Nine arrays move together, so a node's rays stay
+// contiguous.
 #include "trace/ray_filter.h"
 
 #include <immintrin.h>
@@ -99,7 +101,8 @@ struct Lookahead {
                 masks[count] = std::uint8_t(passes(load(s, hi), box));
             }
     }
-    /// The next block's verdict, testing ahead first if none is left.
+    /// The next block's verdict (testing ahead first if none is left), kept by peek, consumed
+    /// by take.
     unsigned peek(const Arrays& s, const Aabb8& box, std::size_t lo, std::size_t hi, bool upwards) {
         if (next == count) test(s, box, lo, hi, upwards);
         return masks[next];
@@ -159,10 +162,6 @@ std::size_t filter_sequential(const Arrays& s, std::size_t begin, std::size_t en
     const std::uint32_t first_mask = left.take(s, box8, begin, end, true),
                         last_mask = right.take(s, box8, begin, end, false);
     std::size_t read_l = begin + 8, read_r = end - 8, write_l = begin, write_r = end;
-    // Each end's next blocks are tested kAhead at a time before any of them moves: the box
-    // tests then depend on no cursor and overlap, where one block at a time each store waited
-    // for its own test. A block is tested while unread, so its data is still there when it
-    // moves; a tested block the other end reaches first is never moved from this end.
     while (read_r - read_l >= 8) {
         Block b;
         unsigned mask;

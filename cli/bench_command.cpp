@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 
 #include "bench_dynamic.h"
@@ -140,9 +142,10 @@ std::size_t reference_index(const std::vector<Variant>& variants) {
     return ours < variants.size() ? ours : 0;
 }
 
-/// Times every variant on `rays`, repetitions interleaved and rotated (A B C, B C A, C A B,
-/// ...: each variant follows each other one equally often, so none always inherits the memory
-/// the same predecessor handed back to the system or left in the allocator), calling
+/// Times every variant on `rays`, repetitions interleaved, each in its own order (a shuffle
+/// seeded by the repetition's number: the same for every run, and no variant always inherits
+/// the memory state that one same predecessor left, pages handed back to the system or kept by
+/// the allocator), calling
 /// `frame_done` after each frame, then compares the hits of the last repetition with the
 /// reference variant's.
 SetRun run_set(const Scene& scene, std::span<const Triangle> triangles,
@@ -158,9 +161,11 @@ SetRun run_set(const Scene& scene, std::span<const Triangle> triangles,
         run.methods.back().label = v.label;
         run.methods.back().method = v.method;
     }
-    for (int r = 0; r < repeat; ++r)
-        for (std::size_t k = 0; k < variants.size(); ++k) {
-            const std::size_t i = (k + std::size_t(r)) % variants.size();
+    std::vector<std::size_t> order(variants.size());
+    for (int r = 0; r < repeat; ++r) {
+        std::iota(order.begin(), order.end(), std::size_t(0));
+        std::shuffle(order.begin(), order.end(), std::mt19937(std::uint32_t(r)));
+        for (const std::size_t i : order) {
             MethodRun& m = run.methods[i];
             const auto tracer = make_tracer(variants[i].method, EdacrtParams{}, variants[i].mode);
             auto start = std::chrono::steady_clock::now();
@@ -172,6 +177,7 @@ SetRun run_set(const Scene& scene, std::span<const Triangle> triangles,
             m.working_bytes = std::max(m.working_bytes, tracer->working_bytes());
             frame_done();
         }
+    }
     const std::size_t ref = reference_index(variants);
     run.methods[ref].reference = true;
     for (std::size_t i = 0; i < variants.size(); ++i)

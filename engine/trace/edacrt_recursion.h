@@ -623,16 +623,16 @@ class Recursion {
         return tests;
     }
 
-    /// Starts loading the hits of the rays at stream positions [begin, end), which a leaf
-    /// reads (the current hit) and writes, so that the random access by ray number overlaps
-    /// the tests of the rays before them.
+    /// Prefetches the hits of the rays at stream positions [begin, end), which a leaf reads
+    /// (a closest-hit ray's current hit) and writes on a hit, so that the access by ray
+    /// number, random in incoherent sets, overlaps the tests of the rays before them.
     void prefetch_hits(std::size_t begin, std::size_t end) const {
         for (std::size_t i = begin; i != end; ++i)
             _mm_prefetch(reinterpret_cast<const char*>(&batch_.hits[batch_.stream.id[i]]),
                          _MM_HINT_T0);
     }
 
-    /// trace_rays loads the hit this many rays ahead.
+    /// trace_rays prefetches the hit this many rays ahead.
     static constexpr std::size_t kPrefetchRays = 4;
 
     /// Bit l of a mask to all-ones in lane l.

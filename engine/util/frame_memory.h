@@ -36,8 +36,12 @@ struct FrameAllocator {
     void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
-    friend bool operator==(const FrameAllocator&, const FrameAllocator&) { return true; }
 };
+
+template <class T, class U>
+bool operator==(const FrameAllocator<T>&, const FrameAllocator<U>&) {
+    return true;  // stateless: any one frees what another allocated
+}
 
 void free_frame_memory(void* p) noexcept;
 

@@ -12,9 +12,10 @@
 
 namespace edacrt {
 
-/// `bytes` aligned to `align` (a power of two), on huge pages when large; std::free releases
-/// it. Throws std::bad_alloc.
+/// `bytes` aligned to `align` (a power of two), on huge pages when large; free_frame_memory
+/// releases it. Throws std::bad_alloc.
 void* allocate_frame_memory(std::size_t bytes, std::size_t align);
+void free_frame_memory(void* p) noexcept;
 
 /// Allocator of FrameVector: allocate_frame_memory, and default-initialisation on resize.
 template <class T>
@@ -27,7 +28,7 @@ struct FrameAllocator {
         if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
         return static_cast<T*>(allocate_frame_memory(n * sizeof(T), alignof(T)));
     }
-    void deallocate(T* p, std::size_t) noexcept;
+    void deallocate(T* p, std::size_t) noexcept { free_frame_memory(p); }
     template <class U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
         ::new (static_cast<void*>(p)) U;  // default-, not value-initialised
@@ -41,13 +42,6 @@ struct FrameAllocator {
 template <class T, class U>
 bool operator==(const FrameAllocator<T>&, const FrameAllocator<U>&) {
     return true;  // stateless: any one frees what another allocated
-}
-
-void free_frame_memory(void* p) noexcept;
-
-template <class T>
-void FrameAllocator<T>::deallocate(T* p, std::size_t) noexcept {
-    free_frame_memory(p);
 }
 
 template <class T>

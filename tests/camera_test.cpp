@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <iostream>
@@ -54,6 +55,41 @@ TEST(Camera, InvalidCamerasAreRejected) {
     EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 180}), InputError);
     EXPECT_THROW(validate(Camera{{NAN, 0, 1}, {0, 0, 0}, {0, 1, 0}, 45}), InputError);
     EXPECT_NO_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 45}));
+}
+
+// Finite inputs whose arithmetic overflows or underflows: eye - look_at past the float range, a
+// view longer than 1.8e19 (its squared length overflows), a view of 1e-30 (its squared length
+// underflows), a huge up vector. Each is refused, or gives a finite orthonormal frame.
+TEST(Camera, ViewsWhoseArithmeticOverflowsAreRejectedOrFinite) {
+    const Camera overflows[] = {
+        {{3e38f, 0, 0}, {-3e38f, 0, 0}, {0, 1, 0}, 45},
+        {{0, 0, 3e38f}, {0, 0, -3e38f}, {0, 1, 0}, 45},
+        {{1e20f, 0, 0}, {-1e20f, 0, 0}, {0, 1, 0}, 45},
+        {{0, 0, 1e-30f}, {0, 0, 0}, {0, 1, 0}, 45},
+        {{0, 0, 0}, {1e-44f, 0, 0}, {0, 1, 0}, 45},
+    };
+    for (const Camera& camera : overflows) {
+        EXPECT_THROW(validate(camera), InputError) << camera.eye.x << " " << camera.eye.z;
+        EXPECT_THROW(PinholeProjection(camera, 8, 8), InputError);
+    }
+    const Camera accepted[] = {
+        {{0, 0, 5}, {0, 0, 0}, {0, 1e30f, 0}, 45},
+        {{0, 0, 5}, {0, 0, 0}, {1e-30f, 3e38f, 0}, 45},
+        {{1e18f, 0, 0}, {-1e18f, 0, 0}, {0, 1, 0}, 179.9f},
+        {{0, 0, 1e-3f}, {0, 0, 0}, {0, 1e-38f, 0}, 1e-3f},
+    };
+    for (const Camera& camera : accepted) {
+        ASSERT_NO_THROW(validate(camera));
+        const PinholeProjection projection(camera, 7, 5);
+        for (const Ray& ray : projection.pixel_centre_rays()) {
+            EXPECT_TRUE(std::isfinite(ray.dir.x) && std::isfinite(ray.dir.y) &&
+                        std::isfinite(ray.dir.z));
+            EXPECT_NEAR(glm::length(ray.dir), 1.0f, 1e-5f);
+        }
+    }
+    // Up of zero length, or parallel once scaled.
+    EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 0, 0}, 45}), InputError);
+    EXPECT_THROW(validate(Camera{{0, 0, 1}, {0, 0, 0}, {0, 0, 1e-38f}, 45}), InputError);
 }
 
 TEST(Camera, PixelIsTheInverseOfRay) {

@@ -228,6 +228,11 @@ std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& ra
                             (!hits[i].hit() || (std::isfinite(hits[i].t) &&
                                                 std::abs(ld(hits[i].t) - reference[i].t) <=
                                                     ld(tolerance) * reference[i].t));
+            // The barycentrics of a reported hit lie in the triangle, to rounding.
+            const bool inside = !hits[i].hit() || (hits[i].u >= 0.0f && hits[i].v >= 0.0f &&
+                                                   hits[i].u + hits[i].v <= 1.0f + 1e-6f);
+            EXPECT_TRUE(inside) << label << ", " << method.name << ", ray " << i << ": u "
+                                << hits[i].u << ", v " << hits[i].v;
             if (!ok && wrong++ < 3 && !allowed)
                 ADD_FAILURE() << label << ", " << method.name << ", closest, ray " << i << ": got "
                               << (hits[i].hit() ? "t " + std::to_string(hits[i].t) : "a miss")
@@ -452,6 +457,94 @@ TEST(HardCases, SpheresAtEveryScaleAndFarFromTheOrigin) {
 #endif
             if (HasFailure()) return;
         }
+}
+
+TEST(HardCases, FarRaysThatMissNeverHit) {
+    // Rays from 1e3 to 1e7 units away at a unit sphere: half pass 0.01 to 60 units beside it
+    // (found by the adversarial campaign: naive reported hits 1000 triangle sizes outside the
+    // triangle for these), half aim inside it. The float test resolves a ray to the rounding
+    // of its origin's coordinates (the sheared corners are differences from the origin):
+    // 2^-24 of 1e6 is 0.06, and a few such roundings add up. Rays that pass within 5e-7 of
+    // their distance of the sphere's outline are left out.
+    const Scene sphere = make_builtin_scene("builtin:sphere:subdiv=3");
+    std::mt19937 rng(33);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const double distance : {1e3, 1e4, 1e5, 1e6, 1e7}) {
+        const double margin = 5e-7 * distance + 0.01;
+        std::vector<Ray> rays;
+        for (int i = 0; i < 1000; ++i) {
+            const glm::dvec3 from = distance * random_direction(rng);
+            const glm::dvec3 axis = glm::normalize(-from);
+            const glm::dvec3 side = glm::normalize(glm::cross(axis, random_direction(rng)));
+            const bool miss = i % 2 || margin > 0.9;
+            // A subdivided sphere's faces lie within 0.01 inside the sphere.
+            const double off = miss ? 1.0 + margin * std::pow(6000.0, unit(rng))
+                                    : (0.98 - margin) * unit(rng);
+            const glm::dvec3 to = off * side;
+            rays.push_back({glm::vec3(from), glm::vec3(glm::normalize(to - from))});
+        }
+        expect_reference_hits(sphere, rays, "rays from " + std::to_string(distance), false);
+    }
+}
+
+/// A convex polygon of `corners` corners on the unit circle in the plane z = 0, triangulated
+/// as the OBJ loader triangulates a face: a fan from corner 0, of thin triangles.
+Scene polygon_fan(std::uint32_t corners) {
+    std::vector<glm::dvec3> positions;
+    for (std::uint32_t k = 0; k < corners; ++k) {
+        const double a = 2.0 * M_PI * k / corners;
+        positions.push_back({std::cos(a), std::sin(a), 0.0});
+    }
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for (std::uint32_t k = 1; k + 1 < corners; ++k) tris.push_back({0, k, k + 1});
+    return make_scene(positions, tris);
+}
+
+TEST(HardCases, FansOfAMillionThinTrianglesNeitherOverflowTheStackNorLeak) {
+    // Every ray enters every child box near the shared corner, so every split candidate costs
+    // the same: the recursion once went a level deeper per few triangles and overflowed the
+    // stack from 60k corners. Rays fall on the plane from above, at the shared corner (where
+    // the barycentrics of the thin triangles came out at -1.5e-3), across the polygon and
+    // outside it; the polygon's edge is 1e-11 from the circle, so points off the circle by
+    // 1e-3 have a clear answer.
+    for (const std::uint32_t corners : {1000u, 1000000u}) {
+        const Scene scene = polygon_fan(corners);
+        std::mt19937 rng(corners);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        std::vector<Ray> rays;
+        std::vector<bool> inside;
+        while (rays.size() < 300) {
+            glm::dvec2 p(2.4 * unit(rng) - 1.2, 2.4 * unit(rng) - 1.2);
+            if (rays.size() % 3 == 0)  // about the shared corner (1, 0), within 1e-6 to 1e-2
+                p = glm::dvec2(1.0, 0.0) + std::pow(10.0, -6.0 + 4.0 * unit(rng)) *
+                                               glm::dvec2(-unit(rng), 2.0 * unit(rng) - 1.0);
+            const double r = glm::length(p);
+            if (std::abs(r - 1.0) < 1e-3 && rays.size() % 3 != 0) continue;
+            const glm::dvec3 from(p.x + 0.3 * unit(rng), p.y - 0.2 * unit(rng), 1.0);
+            rays.push_back({glm::vec3(from), glm::vec3(glm::normalize(glm::dvec3(p, 0.0) - from))});
+            inside.push_back(r < 1.0);
+        }
+        trace_every_way(scene, rays, [&](const std::string& method, Query query, const auto& hits) {
+            std::size_t wrong = 0;
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                // Near the shared corner the polygon is as wide as a float's rounding: the
+                // answer there is checked only through its barycentrics.
+                const bool decided = i % 3 != 0;
+                if (decided && hits[i].hit() != bool(inside[i])) ++wrong;
+                if (hits[i].hit() && query == Query::closest) {
+                    EXPECT_TRUE(hits[i].u >= 0.0f && hits[i].v >= 0.0f &&
+                                hits[i].u + hits[i].v <= 1.0f + 1e-6f)
+                        << method << ", ray " << i << ": u " << hits[i].u << ", v " << hits[i].v;
+                    const double t = double(rays[i].org.z) / -double(rays[i].dir.z);
+                    EXPECT_NEAR(hits[i].t, t, 1e-5 * t) << method << ", ray " << i;
+                }
+            }
+            EXPECT_EQ(wrong, 0u) << method << (query == Query::any ? ", any" : "") << ", "
+                                 << corners << " corners";
+            tallies()[method].checked += rays.size();
+            tallies()[method].wrong += wrong;
+        });
+    }
 }
 
 TEST(HardCases, HugeAndTinyObjectsInOneScene) {

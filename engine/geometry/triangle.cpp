@@ -143,9 +143,10 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                              const ShearedTriangle<float>& f, float tmin, float tmax,
                              TriangleHit& out) {
     const ShearedTriangle<double> d = shear_triangle_in_double(r, tri);
-    const double u = edge_uncertain(f.u, f.cx * f.by, f.cy * f.bx) ? d.u : double(f.u);
-    const double v = edge_uncertain(f.v, f.ax * f.cy, f.ay * f.cx) ? d.v : double(f.v);
-    const double w = edge_uncertain(f.w, f.bx * f.ay, f.by * f.ax) ? d.w : double(f.w);
+    const TriangleErrors e = corner_errors(r, f);
+    const double u = edge_uncertain(f.u, e.c, e.b) ? d.u : double(f.u);
+    const double v = edge_uncertain(f.v, e.a, e.c) ? d.v : double(f.v);
+    const double w = edge_uncertain(f.w, e.b, e.a) ? d.w : double(f.w);
     if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
     if (u + v + w == 0) return false;
     double t;

@@ -29,6 +29,7 @@ struct WatertightRay {
     glm::vec3 dir;
     int kx, ky, kz;
     float sx, sy, sz;
+    float shear;  // |dir[kx]| + |dir[ky]|, for the sheared corners' error (corner_error)
 };
 
 inline WatertightRay make_watertight_ray(const Ray& ray) {
@@ -38,7 +39,15 @@ inline WatertightRay make_watertight_ray(const Ray& ray) {
     int ky = kx == 2 ? 0 : kx + 1;
     if (ray.dir[kz] < 0.0f) std::swap(kx, ky);  // keep the winding, so U, V, W keep their sign
     const float sz = 1.0f / ray.dir[kz];
-    return {ray.org, ray.dir, kx, ky, kz, ray.dir[kx] * sz, ray.dir[ky] * sz, sz};
+    return {ray.org,
+            ray.dir,
+            kx,
+            ky,
+            kz,
+            ray.dir[kx] * sz,
+            ray.dir[ky] * sz,
+            sz,
+            std::abs(ray.dir[kx]) + std::abs(ray.dir[ky])};
 }
 
 /// Distance and barycentrics of a hit (u weights p1, v weights p2).
@@ -122,15 +131,50 @@ struct ShearedTriangle {
 /// digits where the float ones cancel (products near 3e4 whose difference is near 5).
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri);
 
-/// Whether the float edge function e = p - q (p, q the two products) may have the wrong sign:
-/// the products cancel to within 2^-18 of their size (a long edge passing close to the ray:
-/// rounding alone is 2^-23 of them, the sheared corners' own error a few times more), or they
-/// are below 2^-100 (denormal products lose digits), or not finite. It depends only on the
-/// edge's two corners, and the triangle across the edge computes q - p, so both triangles
-/// decide alike whether to recompute the edge in double: the test stays watertight.
-[[gnu::always_inline]] inline bool edge_uncertain(float e, float p, float q) {
-    constexpr float kCancellation = 0x1p-18f, kTiny = 0x1p-100f;
-    return !(std::abs(e) > std::max(kCancellation * (std::abs(p) + std::abs(q)), kTiny));
+/// The rounding error of one sheared corner (x, y, z) of shear_triangle, for edge_uncertain:
+/// `error` bounds |dx| and |dy|, `size` is |x| + |y| + error. The corner is a difference from
+/// the origin, sheared: x = (P_kx - o_kx) - s_x (P_kz - o_kz), so it carries the roundings of
+/// the translation and the shear, relative to |P - o| and not to |x|: for an origin 1e6 away
+/// that is 0.06, more than a unit triangle's sheared size. With |s_x (P_kz - o_kz)| <=
+/// |dir_kx| |z| (1 + 3u), |dx| <= gamma(4) (|x| + |dir_kx| |z|), and likewise for y; the
+/// bound takes 2^-20 (four times gamma(4), for the roundings of the edge function's products
+/// and of the bound itself) of |x| + |y| + (|dir_kx| + |dir_ky|) |z|.
+struct CornerError {
+    float error, size;
+};
+
+[[gnu::always_inline]] inline CornerError corner_error(float x, float y, float z, float shear) {
+    constexpr float kCornerRounding = 0x1p-20f;
+    const float xy = std::abs(x) + std::abs(y);
+    const float error = kCornerRounding * (xy + shear * std::abs(z));
+    return {error, xy + error};
+}
+
+/// Whether the float edge function e = x_p y_q - y_p x_q of corners p, q may have another
+/// sign than that of the exact triangle: |e| within e's error bound, de <= dp (n_q + dq) +
+/// dq (n_p + dp) (n = |x| + |y|, d = corner_error's error; it covers the products' rounding,
+/// as d >= 2^-20 n), or below 2^-100 (denormal products lose digits), or not finite. A sign
+/// beyond the bound is the exact one, so an edge decided in float and one recomputed in double
+/// describe the same triangle. The bound depends only on the edge's two corners, and the
+/// triangle across the edge computes -e from the same corners, so both triangles decide alike
+/// whether to recompute the edge in double: the test stays watertight.
+[[gnu::always_inline]] inline bool edge_uncertain(float e, const CornerError& p,
+                                                  const CornerError& q) {
+    constexpr float kTiny = 0x1p-100f;
+    const float magnitude = std::abs(e);
+    return !(magnitude > std::max(p.error * q.size + q.error * p.size, kTiny)) ||
+           !(magnitude < kInfinity);
+}
+
+/// The corner errors of a sheared triangle's corners A, B, C, in that order.
+struct TriangleErrors {
+    CornerError a, b, c;
+};
+
+[[gnu::always_inline]] inline TriangleErrors corner_errors(const WatertightRay& r,
+                                                           const ShearedTriangle<float>& s) {
+    return {corner_error(s.ax, s.ay, s.az, r.shear), corner_error(s.bx, s.by, s.bz, r.shear),
+            corner_error(s.cx, s.cy, s.cz, r.shear)};
 }
 
 /// A hit's distance is decided in float when its error bound is below this fraction of t
@@ -140,7 +184,9 @@ inline constexpr float kTrustedDistanceError = 0x1p-17f;
 
 /// The distance, barycentrics and acceptance of a triangle the ray's line passes through,
 /// computed in double from the inputs (see shear_triangle_in_double): accepts a t in
-/// [tmin, tmax], finite as a float and beyond its (double) rounding error bound.
+/// [tmin, tmax], finite as a float and beyond its (double) rounding error bound. The edge
+/// functions sheared in double have the signs the inside test decided by (edge_uncertain), so
+/// the barycentrics lie in the triangle.
 bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                           TriangleHit& out);
 
@@ -149,10 +195,13 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
 /// not, refine_hit_in_double also requires the hit to lie in the triangle's box.
 bool differences_exact(const glm::vec3& org, const Triangle& tri);
 
-/// The inside test when some edge function is uncertain in float (edge_uncertain: an exact or
-/// near zero, denormal or overflowing products): those edges are recomputed in double from the
-/// inputs (an exact zero there still counts as on the edge, as in Woop et al.), the others keep
-/// their float sign; the distance is then computed in double. Out of line so the common path
+/// The inside test when some edge function is uncertain in float (edge_uncertain: within its
+/// error bound, denormal or overflowing): those edges are recomputed in double from the inputs
+/// (an exact zero there still counts as on the edge, as in Woop et al.), the others keep their
+/// float sign, which is exact, so all three describe one triangle (before edge_uncertain
+/// counted the corners' rounding, a far ray's float signs described another one, and rays 60
+/// units beside a unit triangle 1e6 away were accepted); the distance and barycentrics are
+/// then computed in double. Out of line so the common path
 /// stays small enough to inline into the traversal loops.
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                              const ShearedTriangle<float>& s, float tmin, float tmax,
@@ -196,24 +245,14 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
 [[gnu::always_inline]] inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri,
                                                       float tmin, float tmax, TriangleHit& out) {
     const ShearedTriangle<float> s = shear_triangle(r, tri);
+    const TriangleErrors d = corner_errors(r, s);
     // One branch for the three edges (bitwise: rarely true, so not worth short-circuiting).
-    if (int(edge_uncertain(s.u, s.cx * s.by, s.cy * s.bx)) |
-        int(edge_uncertain(s.v, s.ax * s.cy, s.ay * s.cx)) |
-        int(edge_uncertain(s.w, s.bx * s.ay, s.by * s.ax))) [[unlikely]]
+    if (int(edge_uncertain(s.u, d.c, d.b)) | int(edge_uncertain(s.v, d.a, d.c)) |
+        int(edge_uncertain(s.w, d.b, d.a))) [[unlikely]]
         return intersect_triangle_rare(r, tri, s, tmin, tmax, out);
     if ((s.u < 0.0f || s.v < 0.0f || s.w < 0.0f) && (s.u > 0.0f || s.v > 0.0f || s.w > 0.0f))
         return false;
     return decide_distance(r, tri, s, s.u + s.v + s.w, tmin, tmax, out);
-}
-
-/// decide_distance alone, for a triangle another kernel (Embree) found the ray to pass through:
-/// our distance, barycentrics and acceptance, whatever our own inside test would say.
-inline bool hit_distance(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
-                         TriangleHit& out) {
-    const ShearedTriangle<float> s = shear_triangle(r, tri);
-    const float det = s.u + s.v + s.w;
-    if (!safe_determinant(det)) return refine_hit_in_double(r, tri, tmin, tmax, out);
-    return decide_distance(r, tri, s, det, tmin, tmax, out);
 }
 
 /// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight

@@ -66,12 +66,22 @@ struct ShearedTriangles8 {
     const __m256 pv = mul(x[0], y[2]), qv = mul(y[0], x[2]);
     const __m256 pw = mul(x[1], y[0]), qw = mul(y[1], x[0]);
     const __m256 u = sub(pu, qu), v = sub(pv, qv), w = sub(pw, qw);
-    const auto uncertain = [](__m256 e, __m256 p, __m256 q) {  // edge_uncertain
-        const __m256 bound = max(mul(set(0x1p-18f), add(abs(p), abs(q))), set(0x1p-100f));
-        return cmp<_CMP_NGT_UQ>(abs(e), bound);
+    // corner_error of each corner, then edge_uncertain of each edge.
+    const __m256 shear = add(s.shear_x, s.shear_y);
+    __m256 corner_error[3], corner_size[3];
+    for (int c = 0; c < 3; ++c) {
+        const __m256 xy = add(abs(x[c]), abs(y[c]));
+        corner_error[c] = mul(set(0x1p-20f), add(xy, mul(shear, abs(z[c]))));
+        corner_size[c] = add(xy, corner_error[c]);
+    }
+    const auto uncertain = [&](__m256 e, int p, int q) {
+        const __m256 bound =
+            max(add(mul(corner_error[p], corner_size[q]), mul(corner_error[q], corner_size[p])),
+                set(0x1p-100f));
+        const __m256 magnitude = abs(e);
+        return any(cmp<_CMP_NGT_UQ>(magnitude, bound), cmp<_CMP_NLT_UQ>(magnitude, set(kInfinity)));
     };
-    const __m256 undecided_edges =
-        any(uncertain(u, pu, qu), uncertain(v, pv, qv), uncertain(w, pw, qw));
+    const __m256 undecided_edges = any(uncertain(u, 2, 1), uncertain(v, 0, 2), uncertain(w, 1, 0));
     const __m256 zero = _mm256_setzero_ps();
     const __m256 outside =
         all(any(cmp<_CMP_LT_OQ>(u, zero), cmp<_CMP_LT_OQ>(v, zero), cmp<_CMP_LT_OQ>(w, zero)),

@@ -1,5 +1,6 @@
 #include "scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -20,28 +21,58 @@ Camera frame_box(const Aabb& box, float vfov_degrees) {
     return camera;
 }
 
+namespace {
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The orthonormal frame of the view, in the float arithmetic the projection uses.
+struct ViewBasis {
+    glm::vec3 forward, right, up;
+};
+
+/// Up scaled to a largest component of 1 (exact for the usual unit axes), so that a huge up
+/// vector cannot overflow the cross product's length.
+glm::vec3 scaled_up(const Camera& camera) {
+    const glm::vec3 a = glm::abs(camera.up);
+    return camera.up / std::max({a.x, a.y, a.z});
+}
+
+ViewBasis view_basis(const Camera& camera) {
+    const glm::vec3 forward = glm::normalize(camera.look_at - camera.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, scaled_up(camera)));
+    return {forward, right, glm::cross(right, forward)};
+}
+
+}  // namespace
+
 void validate(const Camera& camera) {
-    const auto finite = [](const glm::vec3& v) {
-        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-    };
     if (!finite(camera.eye) || !finite(camera.look_at) || !finite(camera.up))
         throw InputError("camera: eye, look-at and up must be finite");
     if (!(camera.vfov_degrees > 0.0f && camera.vfov_degrees < 180.0f))
         throw InputError("camera: vertical field of view must be in (0, 180) degrees, got " +
                          std::to_string(camera.vfov_degrees));
     const glm::vec3 view = camera.look_at - camera.eye;
-    if (glm::length(view) == 0.0f) throw InputError("camera: eye and look-at are the same point");
-    if (glm::length(glm::cross(view, camera.up)) <=
-        1e-6f * glm::length(view) * glm::length(camera.up))
+    if (view == glm::vec3(0.0f)) throw InputError("camera: eye and look-at are the same point");
+    // Finite inputs can still overflow: eye - look_at past 3.4e38, or a length past 1.8e19
+    // (whose square overflows, so normalize gives 0 and then NaN), or underflow (a distance
+    // near 1e-19). Every later step compares NaN as false, so the frame itself is checked.
+    const ViewBasis basis = view_basis(camera);
+    if (!finite(view) || !finite(basis.forward) || glm::length(basis.forward) < 0.5f)
+        throw InputError(
+            "camera: the view direction cannot be normalised in float: eye and look-at are "
+            "too far apart or too close");
+    const glm::vec3 up = scaled_up(camera);
+    if (!finite(up) || glm::length(glm::cross(basis.forward, up)) <= 1e-6f * glm::length(up) ||
+        !finite(basis.right) || !finite(basis.up))
         throw InputError("camera: up vector is zero or parallel to the view direction");
 }
 
 PinholeProjection::PinholeProjection(const Camera& camera, int width, int height)
     : eye_(camera.eye), width_(width), height_(height) {
     validate(camera);
-    const glm::vec3 forward = glm::normalize(camera.look_at - camera.eye);
-    const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-    const glm::vec3 up = glm::cross(right, forward);
+    const auto [forward, right, up] = view_basis(camera);
     const float half_height = std::tan(0.5f * glm::radians(camera.vfov_degrees));
     const float half_width = half_height * float(width) / float(height);
     forward_ = forward;

@@ -14,14 +14,38 @@
 namespace edacrt {
 namespace {
 
+/// Our distance and barycentrics for a triangle Embree found the ray to pass through: those of
+/// our whole test (triangle.h, intersect_triangle) where it agrees. Otherwise the inside
+/// decision stays Embree's (rejecting it would leak: Embree would not offer the neighbour
+/// across the edge that our test would take) with our distance test, and the barycentrics
+/// are clamped into the triangle: Embree's float test differs from ours near edges and, from
+/// 1e6 away, by its rounding of the origin (there our float barycentrics of its hit came out
+/// at u = 8.8). The wrapper so never reports a point outside the hit triangle.
+bool checked_hit(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
+                 TriangleHit& out) {
+    if (intersect_triangle(r, tri, tmin, tmax, out)) return true;
+    const ShearedTriangle<float> s = shear_triangle(r, tri);
+    const float det = s.u + s.v + s.w;
+    if (!(safe_determinant(det) ? decide_distance(r, tri, s, det, tmin, tmax, out)
+                                : refine_hit_in_double(r, tri, tmin, tmax, out)))
+        return false;
+    if (!(out.u >= 0.0f)) out.u = 0.0f;  // NaN too: a triangle seen edge-on
+    if (!(out.v >= 0.0f)) out.v = 0.0f;
+    if (const float sum = out.u + out.v; sum > 1.0f) {
+        out.u /= sum;
+        out.v /= sum;
+    }
+    return true;
+}
+
 /// The context of every query: a filter (called for each candidate hit Embree finds) accepts
-/// a candidate only where our distance test does (triangle.h, hit_distance: t conservatively
-/// positive, within [tmin, tmax]); the inside decision stays Embree's. Embree has no
-/// conservative t test, so from an exact point on a coordinate plane it reports the ray's own
-/// triangle at t = 0; with this filter, rays spawned from surfaces (geometry/offset.h, tmin > 0)
-/// do not self-intersect. For occlusion queries the filter also records the occluder
-/// (rtcOccluded* reports only whether a ray is blocked). Rays carry their index in the batch as
-/// their id, so the filter finds each lane's hit in every mode (1, 8, stream).
+/// a candidate only where our distance test does (checked_hit: t conservatively positive,
+/// within [tmin, tmax]). Embree has no conservative t test, so from an exact point on a
+/// coordinate plane it reports the ray's own triangle at t = 0; with this filter, rays spawned
+/// from surfaces (geometry/offset.h, tmin > 0) do not self-intersect. For occlusion queries the
+/// filter also records the occluder (rtcOccluded* reports only whether a ray is blocked). Rays
+/// carry their index in the batch as their id, so the filter finds each lane's hit in every mode
+/// (1, 8, stream).
 struct FilterContext {
     RTCIntersectContext base;  // first member: Embree passes &base back to the filter
     const Triangle* triangles;
@@ -52,8 +76,8 @@ void filter_candidates(const RTCFilterFunctionNArguments* args) {
         const unsigned id = RTCRayN_id(args->ray, n, lane);
         const Ray& ray = context->rays[id];
         TriangleHit ours;
-        if (!hit_distance(make_watertight_ray(ray), context->triangles[prim], ray.tmin, ray.tmax,
-                          ours)) {
+        if (!checked_hit(make_watertight_ray(ray), context->triangles[prim], ray.tmin, ray.tmax,
+                         ours)) {
             args->valid[lane] = 0;  // reject: Embree goes on looking
             continue;
         }
@@ -344,7 +368,7 @@ void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit>
         const WatertightRay wray = make_watertight_ray(rays[i]);
         const Triangle& tri = triangles_[std::size_t(hits[i].prim)];
         TriangleHit ours;
-        if (!hit_distance(wray, tri, rays[i].tmin, rays[i].tmax, ours)) {
+        if (!checked_hit(wray, tri, rays[i].tmin, rays[i].tmax, ours)) {
             // Traced without the filter (tmin = 0), yet not conservatively in front: again,
             // filtered, so Embree looks beyond it.
             FilterContext context = make_context(triangles_.data(), rays.data(), nullptr, true);
@@ -352,8 +376,8 @@ void EmbreeTracer::refine_closest_hits(std::span<const Ray> rays, std::span<Hit>
             rtcIntersect1(scene_, &context.base, &ray_hit);
             hits[i] = from_embree(ray_hit);
             if (!hits[i].hit()) continue;
-            if (!hit_distance(wray, triangles_[std::size_t(hits[i].prim)], rays[i].tmin,
-                              rays[i].tmax, ours)) {
+            if (!checked_hit(wray, triangles_[std::size_t(hits[i].prim)], rays[i].tmin,
+                             rays[i].tmax, ours)) {
                 hits[i] = Hit{};
                 continue;
             }

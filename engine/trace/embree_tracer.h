@@ -43,9 +43,9 @@ class EmbreeTracer final : public Tracer {
 
     void trace_range(std::span<const Ray> rays, std::span<Hit> hits, Query query, std::size_t begin,
                      std::size_t end);
-    /// Embree's closest hits with our distance and barycentrics (triangle.h, hit_distance):
-    /// Embree's float t of a sliver can be off by 1% where its edge functions cancel, ours is
-    /// refined in double where its error bound says so.
+    /// Embree's closest hits with our distance and barycentrics (checked_hit in
+    /// embree_tracer.cpp): Embree's float t of a sliver can be off by 1% where
+    /// its edge functions cancel, ours is refined in double where its error bound says so.
     void refine_closest_hits(std::span<const Ray> rays, std::span<Hit> hits, std::size_t begin,
                              std::size_t end) const;
 

@@ -205,6 +205,28 @@ test::CliResult run_viewer_script(const std::filesystem::path& dir, const std::s
         (dir / "script.txt").string() + " " + args);
 }
 
+TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_bookmarks_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string damaged =
+        R"({"version": 1, "scenes": {"builtin:cornell": [{"name": "a", "eye": [0, 0, 5], )"
+        R"("look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 0}]}})";
+    std::ofstream(dir / "bookmarks.json") << damaged;
+    const auto result =
+        run_viewer_script(dir, "frames 2\nquit\n", 1280, 800,
+                          "--bookmarks " + (dir / "bookmarks.json").string() + " builtin:cornell");
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("[0]: skipped"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("copied to a .bak before bookmarks are next saved"),
+              std::string::npos)
+        << result.output;
+    std::ifstream in(dir / "bookmarks.json");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), damaged);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const auto dir = std::filesystem::temp_directory_path() /

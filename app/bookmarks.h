@@ -19,10 +19,17 @@ class Bookmarks {
     /// Where the file lives for this user; empty when neither XDG_CONFIG_HOME nor HOME is set.
     static std::string default_path();
 
-    /// Reads the file; a missing file is no bookmarks. Throws InputError for a malformed one.
-    void load(const std::string& path);
-    /// Writes the file, creating its folder. Throws InputError when it cannot.
-    void save(const std::string& path) const;
+    /// Reads the file; a missing file is no bookmarks. Keeps every entry that can be read and
+    /// returns one message per problem (a bad entry skipped, a file that cannot be read or
+    /// parsed). A file with problems is damaged(): the next save() keeps a copy of it first.
+    std::vector<std::string> load(const std::string& path);
+    /// Writes the file whole or not at all (util/output_file.h), creating its folder. A damaged
+    /// file is first copied to a backup beside it, whose path is returned (else empty). Throws
+    /// InputError when the backup or the write fails; the file on disk is then unchanged.
+    std::string save(const std::string& path);
+
+    /// True when the file loaded had problems and has not been backed up yet.
+    bool damaged() const { return damaged_; }
 
     /// The bookmarks of a scene (keyed by its absolute path, or the built-in spec).
     const std::vector<Bookmark>& of(const std::string& scene) const;
@@ -35,6 +42,7 @@ class Bookmarks {
 
   private:
     std::map<std::string, std::vector<Bookmark>> by_scene_;
+    bool damaged_ = false;
 };
 
 }  // namespace edacrt::app

@@ -1,11 +1,12 @@
 #include "scene_catalog.h"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
 #include "scene/scene_paths.h"
+#include "util/error.h"
+#include "util/input_file.h"
 
 namespace edacrt::app {
 namespace {
@@ -39,9 +40,13 @@ std::string with_commas(long long n) {
 /// The public scenes of the manifest, or false when it cannot be read (the caller falls back
 /// to listing the scenes folder).
 bool add_public_scenes(const fs::path& assets, const fs::path& scenes, SceneCatalog& catalog) {
-    std::ifstream in(assets / "scenes.json");
-    if (!in) return false;
-    const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+    std::string text;
+    try {
+        text = read_text_file(assets / "scenes.json", "scene manifest");
+    } catch (const InputError&) {
+        return false;
+    }
+    const nlohmann::json manifest = nlohmann::json::parse(text, nullptr, false);
     if (!manifest.is_object() || !manifest.contains("scenes") || !manifest["scenes"].is_array())
         return false;
     std::vector<CatalogEntry> found;

@@ -1,9 +1,9 @@
 #include "script.h"
 
-#include <fstream>
 #include <sstream>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace edacrt::app {
 namespace {
@@ -48,11 +48,7 @@ std::vector<ScriptCommand> parse_script(std::string_view text, const std::string
 }
 
 std::vector<ScriptCommand> load_script(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open script");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_script(text.str(), path);
+    return parse_script(read_text_file(path, "script"), path);
 }
 
 }  // namespace edacrt::app

@@ -1,10 +1,10 @@
 #include "script_runner.h"
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 
 #include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt::app {
 namespace {
@@ -70,9 +70,11 @@ void ScriptRunner::step(ViewerState& s, int shown_spp, std::string& screenshot, 
             ++next_;
             return;  // saved in the next frame, one file per frame
         } else if (c.verb == "write-command") {
-            std::ofstream out(c.args[0]);
-            out << s.command_line << "\n";
-            if (!out) fail("cannot write " + c.args[0]);
+            try {
+                write_file(c.args[0], s.command_line + "\n", "command");
+            } catch (const InputError& e) {
+                fail(e.what());
+            }
         } else if (c.verb == "record") {
             s.analysis_requested = true;
             analysis_asked_ = true;

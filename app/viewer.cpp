@@ -159,10 +159,18 @@ int run_viewer(const ViewerOptions& options) {
         return 1;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
-    try {
-        if (!s.bookmarks_path.empty()) s.bookmarks.load(s.bookmarks_path);
-    } catch (const std::exception& e) {
-        std::cerr << "edacrt_viewer: warning: " << e.what() << " (bookmarks start empty)\n";
+    if (!s.bookmarks_path.empty()) {
+        const std::vector<std::string> problems = s.bookmarks.load(s.bookmarks_path);
+        for (const std::string& p : problems) std::cerr << "edacrt_viewer: warning: " << p << "\n";
+        if (!problems.empty()) {
+            s.status = problems.front() +
+                       (problems.size() > 1
+                            ? " (and " + std::to_string(problems.size() - 1) + " more on stderr)"
+                            : std::string()) +
+                       "; the file is copied to a .bak before bookmarks are next saved";
+            std::cerr << "edacrt_viewer: warning: " << s.bookmarks_path
+                      << ": copied to a .bak before bookmarks are next saved\n";
+        }
     }
     const std::filesystem::path assets = options.assets_dir.empty()
                                              ? std::filesystem::path("assets")

@@ -227,6 +227,7 @@ void write_outputs(const BenchOptions& o, const std::vector<int>& thread_counts,
 }
 
 void run(const BenchOptions& o) {
+    check_distinct_files({{"--json", o.json_path}, {"--markdown", o.markdown_path}});
     if (o.dynamic) {
         DynamicBenchOptions d = o.animation;
         d.scenes = o.scenes;

@@ -1,7 +1,6 @@
 #include "common_options.h"
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 
 #include "progress.h"
@@ -112,14 +111,33 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
     write_file(options.stats_path, stats.dump(2) + "\n", "statistics");
 }
 
+void check_distinct_files(const std::vector<NamedPath>& outputs,
+                          const std::vector<NamedPath>& inputs) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const NamedPath& a = outputs[i];
+        if (a.path.empty()) continue;
+        for (std::size_t j = i + 1; j < outputs.size(); ++j)
+            if (!outputs[j].path.empty() && same_output_file(a.path, outputs[j].path))
+                throw InputError(a.option + " and " + outputs[j].option + " both name " + a.path +
+                                 ": give each output a file of its own");
+        for (const NamedPath& in : inputs)
+            if (!in.path.empty() && same_output_file(a.path, in.path))
+                throw InputError(a.option + " " + a.path + " is the " + in.option +
+                                 " input: writing it would replace what is read");
+    }
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void check_writable(const std::string& path, const char* option) {
     if (path.empty()) return;
-    if (!std::ofstream(path, std::ios::app))
-        throw InputError(std::string(option) + " " + path + ": cannot write this file");
+    try {
+        check_output_file(path, "file");
+    } catch (const InputError& e) {
+        throw InputError(std::string(option) + " " + e.what());
+    }
 }
 
 }  // namespace edacrt::cli

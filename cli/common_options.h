@@ -46,6 +46,18 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats);
 /// fails now rather than at its end. Empty: nothing to check.
 void check_writable(const std::string& path, const char* option);
 
+/// A file a command names on its command line: the option and its value.
+struct NamedPath {
+    std::string option;  // "--out"
+    std::string path;    // empty: not given
+};
+
+/// Throws InputError before any work when two outputs name the same file (the second would
+/// silently replace the first), or an output names an input (read, then overwritten).
+/// Devices such as /dev/null and /dev/stdout may be shared.
+void check_distinct_files(const std::vector<NamedPath>& outputs,
+                          const std::vector<NamedPath>& inputs = {});
+
 /// Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);
 

@@ -65,6 +65,8 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
 void run(const RenderOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
+    check_distinct_files({{"--out", o.out}, {"--stats", o.common.stats_path}},
+                         {{"--reference", o.reference}});
     RenderSettings settings = o.settings;
     settings.integrator = parse_integrator(o.integrator);
     settings.primary = parse_primary_shading(o.primary);

@@ -21,6 +21,8 @@ struct TraceOptions {
 
 void run(const TraceOptions& o) {
     const auto threads = apply_thread_limit(o.common);
+    check_distinct_files({{"--out", o.out_path}, {"--stats", o.common.stats_path}},
+                         {{"--rays", o.rays_path}});
     const Method method = parse_method(o.common.method);
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     const std::vector<Ray> rays = read_rays(o.rays_path);

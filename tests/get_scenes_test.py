@@ -6,12 +6,15 @@ import hashlib
 import http.server
 import io
 import json
+import os
+import signal
 import socket
 import struct
 import subprocess
 import sys
 import tempfile
 import threading
+import time
 import unittest
 import zipfile
 import zlib
@@ -184,6 +187,85 @@ class Fetching(unittest.TestCase):
         missing = self.m.run("--mirror", url, mirror=False)
         self.assertEqual(missing.returncode, 1)
         self.assertIn("the server answered 404", missing.stderr)
+
+
+class StallingHandler(http.server.BaseHTTPRequestHandler):
+    """Sends half of a promised body, then waits: a download that is still under way."""
+
+    def do_GET(self):
+        self.send_response(200)
+        self.send_header("Content-Length", str(len(Mirror.OBJ)))
+        self.end_headers()
+        self.wfile.write(Mirror.OBJ[:10])
+        self.wfile.flush()
+        time.sleep(30)
+
+    def log_message(self, *args):
+        pass
+
+
+class Interrupting(unittest.TestCase):
+    """What an interrupted, killed or offline run leaves: no temporary files, no empty folders,
+    and a FIFO in a mirror is refused rather than waited on."""
+
+    def setUp(self):
+        self.m = Mirror()
+        self.addCleanup(self.m.tmp.cleanup)
+
+    def everything(self):
+        return sorted(str(p.relative_to(self.m.dest)) for p in self.m.dest.rglob("*")) \
+            if self.m.dest.exists() else []
+
+    def test_sigterm_removes_the_part_file(self):
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), StallingHandler)
+        server.daemon_threads = True
+        threading.Thread(target=server.serve_forever, daemon=True).start()
+        self.addCleanup(server.server_close)
+        self.addCleanup(server.shutdown)
+        command = [sys.executable, str(SCRIPT), "--manifest", str(self.m.dir / "scenes.json"),
+                   "--dest", str(self.m.dest), "--only", "plain",
+                   "--mirror", f"http://127.0.0.1:{server.server_address[1]}"]
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                   text=True)
+        deadline = time.monotonic() + 20
+        while not list(self.m.dest.rglob("*.part")) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertTrue(list(self.m.dest.rglob("*.part")), "the download never started")
+        process.send_signal(signal.SIGTERM)
+        _, stderr = process.communicate(timeout=20)
+        self.assertEqual(process.returncode, 128 + signal.SIGTERM, stderr)
+        self.assertIn("get-scenes: terminated", stderr)
+        self.assertEqual(self.everything(), [])
+
+    def test_the_next_run_removes_part_files_a_killed_run_left(self):
+        folder = self.m.dest / "plain"
+        folder.mkdir(parents=True)
+        # A process id above any pid_max, so certainly not running; and the older naming.
+        for name in [".tri.obj.4999999.abc123.part", ".tri.obj.k2j_x9.part"]:
+            (folder / name).write_bytes(b"half")
+        result = self.m.run("--only", "plain")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("removed 2 temporary files", result.stdout)
+        self.assertEqual(self.everything(), ["plain", "plain/SOURCE.txt", "plain/tri.obj"])
+
+    def test_offline_leaves_no_empty_folders(self):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        result = self.m.run("--mirror", f"http://127.0.0.1:{port}", mirror=False)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("are you offline?", result.stderr)
+        self.assertEqual(self.everything(), [])
+        self.assertFalse(self.m.dest.exists())
+
+    def test_a_fifo_in_the_mirror_is_refused(self):
+        path = self.m.dir / "mirror" / RAW.split("://")[1] / "tri.obj"
+        path.unlink()
+        os.mkfifo(path)
+        result = self.m.run("--only", "plain")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("not a regular file", result.stderr)
+        self.assertEqual(self.everything(), [])
 
 
 def mitsuba_mesh(positions, normals, uvs, faces):

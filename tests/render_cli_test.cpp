@@ -105,7 +105,7 @@ TEST_F(RenderCli, BadInputFailsWithAClearMessage) {
         {kSmall + "--tone-map magic", "unknown tone map"},
         {kSmall + "--embree-mode magic", "unknown Embree mode"},
         {kSmall + "--reference " + path("bad.pfm"), "not a colour PFM"},
-        {kSmall + "--reference /no/such.pfm", "cannot open"},
+        {kSmall + "--reference /no/such.pfm", "cannot read image (No such file or directory)"},
         {kSmall + "--reference " + path("short.pfm"), "PFM data ends early"},
         {"render --scene builtin:cornell --width 16 --height 16 --reference " + path("ref.pfm"),
          "the reference is 32x24"},

@@ -3,6 +3,7 @@
 // parameter change. The checks look at image regions: the panels are drawn, the walls have
 // their colours, the heat maps are heat maps.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -49,6 +50,25 @@ std::string viewer_under_xvfb(const std::string& args) {
     return "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1280x800x24' " EDACRT_VIEWER
            " --width 1280 --height 800 " +
            args;
+}
+
+// Before any window: a script that is a FIFO or a directory is refused, not waited on (no
+// X server needed).
+TEST(ViewerScreenshots, AScriptThatIsNotARegularFileIsRefusedAtOnce) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_script_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    ASSERT_EQ(::mkfifo((dir / "fifo.txt").c_str(), 0600), 0);
+    for (const auto& script : {dir / "fifo.txt", dir}) {
+        const auto result =
+            test::run_command("timeout 20 " EDACRT_VIEWER " --script " + script.string());
+        EXPECT_EQ(result.exit_code, 1) << result.output;
+        EXPECT_NE(
+            result.output.find("edacrt_viewer: error: " + script.string() + ": not a regular file"),
+            std::string::npos)
+            << result.output;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
@@ -183,6 +203,28 @@ test::CliResult run_viewer_script(const std::filesystem::path& dir, const std::s
         " --width " +
         std::to_string(width) + " --height " + std::to_string(height) + " --script " +
         (dir / "script.txt").string() + " " + args);
+}
+
+TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_bookmarks_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string damaged =
+        R"({"version": 1, "scenes": {"builtin:cornell": [{"name": "a", "eye": [0, 0, 5], )"
+        R"("look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 0}]}})";
+    std::ofstream(dir / "bookmarks.json") << damaged;
+    const auto result =
+        run_viewer_script(dir, "frames 2\nquit\n", 1280, 800,
+                          "--bookmarks " + (dir / "bookmarks.json").string() + " builtin:cornell");
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("[0]: skipped"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("copied to a .bak before bookmarks are next saved"),
+              std::string::npos)
+        << result.output;
+    std::ifstream in(dir / "bookmarks.json");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), damaged);
+    std::filesystem::remove_all(dir);
 }
 
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {

@@ -4,6 +4,7 @@
 #include <imgui_stdlib.h>
 
 #include <glm/gtc/type_ptr.hpp>
+#include <iostream>
 
 #include "panels.h"
 
@@ -16,10 +17,15 @@ void save_bookmarks(ViewerState& s) {
         return;
     }
     try {
-        s.bookmarks.save(s.bookmarks_path);
+        const std::string backup = s.bookmarks.save(s.bookmarks_path);
         s.status = "bookmarks saved to " + s.bookmarks_path;
+        if (!backup.empty()) {
+            s.status += "; the damaged file before it is kept as " + backup;
+            std::cerr << "edacrt_viewer: " << s.status << "\n";
+        }
     } catch (const std::exception& e) {
-        s.status = e.what();
+        s.status = std::string("bookmarks not saved: ") + e.what();
+        std::cerr << "edacrt_viewer: error: " << s.status << "\n";
     }
 }
 

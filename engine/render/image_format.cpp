@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace edacrt {
 
@@ -63,7 +64,9 @@ void save_srgb8(const std::filesystem::path& path, std::span<const std::uint8_t>
 }
 
 Image load_image(const std::filesystem::path& path) {
-    switch (image_format(path)) {
+    const ImageFormat format = image_format(path);
+    check_input_file(path, "image", kMaxImageFileBytes);  // the decoders would wait on a FIFO
+    switch (format) {
         case ImageFormat::png:
         case ImageFormat::jpg:
             return read_png(path);

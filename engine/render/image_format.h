@@ -21,6 +21,9 @@ ImageFormat image_format(const std::filesystem::path& path);
 /// ".png, .jpg, .jpeg, .hdr, .pfm, .exr", for help texts and messages.
 const std::string& image_extensions();
 
+/// The largest image file load_image() reads: a 16384 x 16384 float image and its headers.
+constexpr std::uint64_t kMaxImageFileBytes = 4ull << 30;
+
 /// PNG and JPEG hold tone-mapped 8-bit sRGB; HDR, PFM and EXR the linear radiance.
 bool is_linear(ImageFormat format);
 

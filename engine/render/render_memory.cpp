@@ -4,10 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
@@ -19,6 +19,7 @@
 #include "trace/ray_stream.h"
 #include "trace/trace_stats.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace edacrt {
 namespace {
@@ -31,9 +32,14 @@ constexpr std::uint64_t kTracerBytesPerRay = RayStream::kBytesPerRay;
 constexpr std::uint64_t kPathStateBytes = sizeof(glm::vec3) + 2 * 4;
 
 std::optional<std::uint64_t> read_number(const char* path) {
-    std::ifstream in(path);
     std::string text;
-    if (!(in >> text)) return std::nullopt;
+    try {
+        // A limit file holds one number; the cap keeps a strange mount from being read whole.
+        text = read_text_file(path, "limit file", 4096);
+    } catch (const InputError&) {
+        return std::nullopt;
+    }
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
     std::uint64_t value = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc{} || end != text.data() + text.size()) return std::nullopt;  // "max"

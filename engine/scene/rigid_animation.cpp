@@ -5,16 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <vector>
 
 #include "scene/obj_loader.h"
 #include "util/error.h"
+#include "util/input_file.h"
+#include "util/json_limits.h"
 
 namespace edacrt {
 namespace {
@@ -52,19 +52,20 @@ struct Reader {
                 continue;
             std::string list;
             for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-            fail(where, "unknown field '" + name + "' (known: " + list + ")");
+            fail(where, "unknown field '" + shorten(name) + "' (known: " + list + ")");
         }
     }
 
     double number(const json& j, const std::string& where) const {
-        if (!j.is_number()) fail(where, "expected a number, got " + j.dump());
+        if (!j.is_number()) fail(where, "expected a number, got " + json_excerpt(j));
         const double x = j.get<double>();
         if (!std::isfinite(x)) fail(where, "expected a finite number");
         return x;
     }
 
     glm::dvec3 vec3(const json& j, const std::string& where) const {
-        if (!j.is_array() || j.size() != 3) fail(where, "expected [x, y, z], got " + j.dump());
+        if (!j.is_array() || j.size() != 3)
+            fail(where, "expected [x, y, z], got " + json_excerpt(j));
         return {number(j[0], where), number(j[1], where), number(j[2], where)};
     }
 
@@ -81,7 +82,7 @@ struct Reader {
             const json& r = j["rotate"];
             const std::string at = where + ".rotate";
             if (!r.is_array() || r.size() != 4)
-                fail(at, "expected [axis x, axis y, axis z, degrees], got " + r.dump());
+                fail(at, "expected [axis x, axis y, axis z, degrees], got " + json_excerpt(r));
             const glm::dvec3 axis(number(r[0], at), number(r[1], at), number(r[2], at));
             if (!(glm::length(axis) > 0.0) || !std::isfinite(glm::length(axis)))
                 fail(at, "the axis must be a non-zero vector");
@@ -215,17 +216,8 @@ class RigidAnimation final : public Animation {
 
 AnimatedScene load_rigid_animation(const std::filesystem::path& path) {
     const Reader reader{path.string()};
-    std::ifstream in(path, std::ios::binary);
-    if (!in || std::filesystem::is_directory(path))
-        throw InputError(path.string() + ": cannot read this animation file");
-    std::stringstream text;
-    text << in.rdbuf();
-    json root;
-    try {
-        root = json::parse(text.str());
-    } catch (const json::parse_error& e) {
-        throw InputError(path.string() + ": not valid JSON: " + e.what());
-    }
+    const std::string text = read_text_file(path, "animation file");
+    const json root = parse_json(text, path.string());
     reader.only_fields(root, "the file", {"camera", "objects"});
     if (!root.contains("objects") || !root["objects"].is_array() || root["objects"].empty())
         reader.fail("objects", "expected a non-empty list of objects");
@@ -252,7 +244,7 @@ AnimatedScene load_rigid_animation(const std::filesystem::path& path) {
             part = mesh.starts_with("builtin:") ? load_scene(mesh)
                                                 : load_obj(path.parent_path() / mesh);
         } catch (const InputError& e) {
-            reader.fail(where + ".mesh", e.what());
+            reader.fail(where + ".mesh", shorten(e.what(), 600));  // it may quote a long name
         }
         object.vertices = part.positions.size();
         object.normals = part.normals.size();

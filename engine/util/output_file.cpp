@@ -1,5 +1,10 @@
 #include "util/output_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -7,16 +12,83 @@
 #include "util/error.h"
 
 namespace edacrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Devices, FIFOs and /proc are written in place: they cannot be replaced by a rename, and
+/// /dev/stdout must reach the process's own standard output.
+bool written_in_place(const fs::path& path) {
+    std::error_code ec;
+    const std::string text = fs::absolute(path, ec).lexically_normal().string();
+    if (text.starts_with("/dev/") || text.starts_with("/proc/")) return true;
+    struct stat status {};
+    return ::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode);
+}
+
+/// Where a rename must put the content: a symbolic link is kept and its target replaced.
+fs::path rename_target(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+    const fs::path target = fs::canonical(path, ec);
+    return ec ? path : target;  // a dangling link: replaced by the file
+}
+
+/// The reason a temporary file could not be made, saying so unless the folder is missing.
+std::string temporary_error(int error) {
+    return std::string(std::strerror(error)) +
+           (error == ENOENT || error == ENOTDIR ? "" : ", for a temporary file beside it");
+}
+
+/// Creates a new, unique file beside `target`; returns its descriptor (-1 with errno set).
+int open_temporary(const fs::path& target, fs::path& temp) {
+    static std::atomic<unsigned> counter{0};
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        temp = target;
+        temp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+        // 0666 and O_EXCL: the permissions a new file gets under the umask, and no clobbering.
+        const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST) return fd;
+    }
+    return -1;
+}
+
+}  // namespace
 
 OutputFile::OutputFile(const std::filesystem::path& path, std::string what)
-    : path_(path), what_(std::move(what)), file_(std::fopen(path.c_str(), "wb")) {
-    if (!file_)
-        throw InputError(path_.string() + ": cannot create " + what_ + " (" + std::strerror(errno) +
+    : path_(path), target_(path), what_(std::move(what)) {
+    if (written_in_place(path)) {
+        file_ = std::fopen(path.c_str(), "wb");
+        if (!file_)
+            throw InputError(path_.string() + ": cannot create " + what_ + " (" +
+                             std::strerror(errno) + ")");
+        return;
+    }
+    target_ = rename_target(path);
+    const int fd = open_temporary(target_, temp_);
+    if (fd < 0) {
+        const int error = errno;
+        temp_.clear();
+        throw InputError(path_.string() + ": cannot create " + what_ + " (" +
+                         temporary_error(error) + ")");
+    }
+    // The replacement keeps the permissions of the file it replaces.
+    struct stat old {};
+    if (::stat(target_.c_str(), &old) == 0) ::fchmod(fd, old.st_mode & 07777);
+    file_ = ::fdopen(fd, "wb");
+    if (!file_) {
+        const int error = errno;
+        ::close(fd);
+        ::unlink(temp_.c_str());
+        temp_.clear();
+        throw InputError(path_.string() + ": cannot create " + what_ + " (" + std::strerror(error) +
                          ")");
+    }
 }
 
 OutputFile::~OutputFile() {
     if (file_) std::fclose(file_);
+    if (!temp_.empty()) ::unlink(temp_.c_str());
 }
 
 void OutputFile::write(const void* data, std::size_t size) {
@@ -30,17 +102,54 @@ void OutputFile::close() {
     // Buffered data reaches the file only here, so this is where a full disk shows.
     errno = 0;
     if (std::fflush(file_) != 0 && !error_) error_ = errno ? errno : EIO;
+    // Data on disk before the rename, so a crash leaves the old file or the new, not nothing.
+    if (!temp_.empty() && !error_ && ::fsync(::fileno(file_)) != 0) error_ = errno;
     errno = 0;
     if (std::fclose(std::exchange(file_, nullptr)) != 0 && !error_) error_ = errno ? errno : EIO;
+    if (!error_ && !temp_.empty() && std::rename(temp_.c_str(), target_.c_str()) != 0)
+        error_ = errno;
+    if (!error_) temp_.clear();  // renamed: nothing left to remove
+    if (!temp_.empty()) {
+        ::unlink(temp_.c_str());
+        temp_.clear();
+    }
     if (error_)
         throw InputError(path_.string() + ": cannot write " + what_ + " (" + std::strerror(error_) +
-                         ")");
+                         (written_in_place(path_) ? ")" : "; the old file, if any, is unchanged)"));
 }
 
 void write_file(const std::filesystem::path& path, std::string_view bytes, std::string what) {
     OutputFile file(path, std::move(what));
     file.write(bytes);
     file.close();
+}
+
+void check_output_file(const std::filesystem::path& path, std::string_view what) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw InputError(path.string() + ": is a directory, not a " + std::string(what) + " file");
+    if (written_in_place(path)) return;  // a FIFO may find its reader later
+    const fs::path target = rename_target(path);
+    if (fs::exists(target, ec) && ::access(target.c_str(), W_OK) != 0)
+        throw InputError(path.string() + ": cannot write " + std::string(what) + " (" +
+                         std::strerror(errno) + ")");
+    fs::path temp;
+    const int fd = open_temporary(target, temp);
+    if (fd < 0)
+        throw InputError(path.string() + ": cannot create " + std::string(what) + " (" +
+                         temporary_error(errno) + ")");
+    ::close(fd);
+    ::unlink(temp.c_str());
+}
+
+bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+    if (written_in_place(a) || written_in_place(b)) return false;
+    std::error_code ea, eb;
+    if (fs::exists(a, ea) && fs::exists(b, eb)) return fs::equivalent(a, b, ea) && !ea;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
+    const fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
+    if (ea || eb) return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
+    return ca == cb;
 }
 
 }  // namespace edacrt

@@ -1,6 +1,8 @@
 #pragma once
 // A file written with every error checked, the final flush and close included: a full disk
 // (or /dev/full) fails the command instead of leaving a truncated file behind silently.
+// A regular file (or a new one) is written to a temporary file beside it and renamed over it
+// only once complete, so a failed write leaves the old file as it was.
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
@@ -11,10 +13,10 @@ namespace edacrt {
 
 class OutputFile {
   public:
-    /// Creates or truncates `path`; `what` names the content in messages ("PNG", "hit file").
-    /// Throws InputError when the file cannot be created.
+    /// Starts writing `path`; `what` names the content in messages ("PNG", "hit file").
+    /// Throws InputError when the file (or its temporary) cannot be created.
     OutputFile(const std::filesystem::path& path, std::string what);
-    ~OutputFile();  // closes without reporting: only reached unclosed on an error path
+    ~OutputFile();  // an unclosed file (an error path) is abandoned: its temporary removed
     OutputFile(const OutputFile&) = delete;
     OutputFile& operator=(const OutputFile&) = delete;
 
@@ -22,11 +24,14 @@ class OutputFile {
     void write(const void* data, std::size_t size);
     void write(std::string_view text) { write(text.data(), text.size()); }
 
-    /// Flushes and closes; throws InputError naming the file and the first error.
+    /// Flushes, closes and renames the temporary over the file; throws InputError naming the
+    /// file and the first error, the old file left untouched.
     void close();
 
   private:
-    std::filesystem::path path_;
+    std::filesystem::path path_;    // as given, for messages
+    std::filesystem::path target_;  // where the content ends up (a symbolic link resolved)
+    std::filesystem::path temp_;    // empty: written in place (a device, a FIFO)
     std::string what_;
     std::FILE* file_ = nullptr;
     int error_ = 0;  // errno of the first failure
@@ -34,5 +39,14 @@ class OutputFile {
 
 /// Writes `bytes` as the whole content of `path` through OutputFile.
 void write_file(const std::filesystem::path& path, std::string_view bytes, std::string what);
+
+/// Throws InputError when `path` could not be written by OutputFile (its folder refuses a
+/// temporary, or the existing file is read-only), so a long run fails before its work rather
+/// than at its end. Creates nothing that stays.
+void check_output_file(const std::filesystem::path& path, std::string_view what);
+
+/// True when `a` and `b` name the same output file (after resolving "..", symbolic links and
+/// hard links). Devices and FIFOs (/dev/null, /dev/stdout) are never the same output.
+bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);
 
 }  // namespace edacrt

@@ -1,0 +1,145 @@
+// The viewer's own files: bookmarks keep every entry they can read and never overwrite a file
+// they could not (a backup first), a save reports its failure; a script or scene manifest that
+// is a FIFO or a directory is refused without blocking.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "bookmarks.h"
+#include "scene_catalog.h"
+#include "script.h"
+#include "temp_dir.h"
+#include "util/error.h"
+
+namespace edacrt::app {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+std::string bytes_of(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string entry(const std::string& name, const std::string& fov = "45") {
+    return R"({"name": ")" + name +
+           R"(", "eye": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": )" + fov + "}";
+}
+
+/// A bookmarks file of `count` entries for builtin:cornell, `bad` spliced in
+/// after the first.
+std::string bookmarks_file(int count, const std::string& bad = "") {
+    std::string list;
+    for (int i = 0; i < count; ++i) {
+        list += (i ? ", " : "") + entry("view " + std::to_string(i));
+        if (i == 0 && !bad.empty()) list += ", " + bad;
+    }
+    return R"({"version": 1, "scenes": {"builtin:cornell": [)" + list + "]}}\n";
+}
+
+TEST(Bookmarks, ABadEntryIsSkippedAndTheOthersKept) {
+    const TempDir dir;
+    const fs::path file = dir.write("bookmarks.json", bookmarks_file(20, entry("flat", "0")));
+    Bookmarks bookmarks;
+    const std::vector<std::string> problems = bookmarks.load(file.string());
+    EXPECT_EQ(bookmarks.of("builtin:cornell").size(), 20u);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_NE(problems[0].find("scenes[\"builtin:cornell\"][1]: skipped"), std::string::npos)
+        << problems[0];
+    EXPECT_TRUE(bookmarks.damaged());
+}
+
+TEST(Bookmarks, ATrailingCommaIsReadPast) {
+    const TempDir dir;
+    std::string text = bookmarks_file(20);
+    text.insert(text.rfind(']'), ",\n");
+    const fs::path file = dir.write("bookmarks.json", text);
+    Bookmarks bookmarks;
+    const std::vector<std::string> problems = bookmarks.load(file.string());
+    EXPECT_EQ(bookmarks.of("builtin:cornell").size(), 20u);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_NE(problems[0].find("trailing commas ignored"), std::string::npos) << problems[0];
+}
+
+TEST(Bookmarks, ADamagedFileIsBackedUpBeforeTheFirstSave) {
+    const TempDir dir;
+    const std::string damaged = bookmarks_file(20) + "garbage";
+    const fs::path file = dir.write("bookmarks.json", damaged);
+    Bookmarks bookmarks;
+    const std::vector<std::string> problems = bookmarks.load(file.string());
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_NE(problems[0].find("not valid JSON"), std::string::npos) << problems[0];
+    bookmarks.put("builtin:cornell", {"new", Camera{}});
+    EXPECT_EQ(bookmarks.save(file.string()), file.string() + ".bak");
+    EXPECT_EQ(bytes_of(file.string() + ".bak"), damaged);
+    EXPECT_FALSE(bookmarks.damaged());
+    EXPECT_EQ(bookmarks.save(file.string()), "");  // backed up once
+    // A later damaged load backs up beside the first backup, not over it.
+    dir.write("bookmarks.json", "{");
+    EXPECT_EQ(bookmarks.load(file.string()).size(), 1u);
+    bookmarks.put("builtin:cornell", {"again", Camera{}});
+    EXPECT_EQ(bookmarks.save(file.string()), file.string() + ".bak.1");
+    EXPECT_EQ(bytes_of(file.string() + ".bak"), damaged);
+    Bookmarks reread;
+    EXPECT_TRUE(reread.load(file.string()).empty());
+    EXPECT_EQ(reread.of("builtin:cornell").size(), 1u);
+}
+
+TEST(Bookmarks, AFailedSaveThrowsAndLeavesTheFile) {
+    const TempDir dir;
+    const fs::path file = dir.write("bookmarks.json", bookmarks_file(3));
+    Bookmarks bookmarks;
+    EXPECT_TRUE(bookmarks.load(file.string()).empty());
+    bookmarks.put("builtin:cornell", {"new", Camera{}});
+    EXPECT_THROW(bookmarks.save("/dev/full"), InputError);
+    // The temporary beside the file cannot be made: a 255-byte name plus its suffix.
+    const fs::path long_name = dir.write(std::string(250, 'b'), bookmarks_file(3));
+    EXPECT_THROW(bookmarks.save(long_name.string()), InputError);
+    EXPECT_EQ(bytes_of(long_name), bookmarks_file(3));
+}
+
+TEST(Bookmarks, AFifoIsAProblemNotAHang) {
+    const TempDir dir;
+    const fs::path fifo = dir.path() / "bookmarks.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    Bookmarks bookmarks;
+    const std::vector<std::string> problems = bookmarks.load(fifo.string());
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_NE(problems[0].find("a FIFO"), std::string::npos) << problems[0];
+    // Neither copied nor replaced.
+    EXPECT_THROW(bookmarks.save(fifo.string()), InputError);
+}
+
+TEST(ViewerFiles, AScriptMustBeARegularFile) {
+    const TempDir dir;
+    const fs::path fifo = dir.path() / "script.txt";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const fs::path& path : {fifo, dir.path(), fs::path("/dev/zero")}) {
+        try {
+            load_script(path.string());
+            ADD_FAILURE() << path;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos)
+                << e.what();
+        }
+    }
+}
+
+TEST(ViewerFiles, AManifestThatIsAFifoFallsBackToTheFolder) {
+    const TempDir dir;
+    fs::create_directories(dir.path() / "assets");
+    fs::create_directories(dir.path() / "scenes/b");
+    std::ofstream(dir.path() / "scenes/b/b.obj") << "v 0 0 0\n";
+    ASSERT_EQ(::mkfifo((dir.path() / "assets/scenes.json").c_str(), 0600), 0);
+    const SceneCatalog catalog = scene_catalog(dir.path() / "assets", dir.path() / "scenes");
+    EXPECT_TRUE(std::any_of(catalog.entries.begin(), catalog.entries.end(), [&](const auto& e) {
+        return e.path == (dir.path() / "scenes/b/b.obj").string();
+    }));
+}
+
+}  // namespace
+}  // namespace edacrt::app

@@ -1,6 +1,7 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
 
+#include "parse_command_line.h"
 #include "scene/animation.h"
 #include "viewer.h"
 
@@ -41,6 +42,6 @@ int main(int argc, char** argv) {
     app.add_option("--shutter", o.shutter,
                    "motion blur: seconds of shutter around the frame's time (0: none)")
         ->group(group);
-    CLI11_PARSE(app, argc, argv);
+    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
     return edacrt::app::run_viewer(o);
 }

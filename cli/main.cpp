@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "parse_command_line.h"
 #include "util/error.h"
 
 int main(int argc, char** argv) {
@@ -19,7 +20,7 @@ int main(int argc, char** argv) {
     const auto run_accuracy = edacrt::cli::add_accuracy_command(app);
     const auto run_bench = edacrt::cli::add_bench_command(app);
     const auto run_info = edacrt::cli::add_info_command(app);
-    CLI11_PARSE(app, argc, argv);
+    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
 
     try {
         if (app.got_subcommand("render")) run_render();

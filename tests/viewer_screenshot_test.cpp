@@ -310,5 +310,19 @@ TEST(ViewerScreenshots, ABrokenSceneOnTheCommandLineFailsClearly) {
     EXPECT_NE(result.output.find("/no/such/scene.obj"), std::string::npos) << result.output;
 }
 
+// As edacrt reports its command line (tests/command_line_cli_test.cpp); no window is opened.
+TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
+    const auto version = test::run_command(EDACRT_VIEWER " --version");
+    EXPECT_EQ(version.exit_code, 0) << version.output;
+    EXPECT_EQ(version.output, "edacrt_viewer 0.1\n");
+    for (const char* args : {" --spp abc", " --bogus", " --width 10"}) {
+        const auto result = test::run_command(std::string(EDACRT_VIEWER) + args);
+        EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
+        EXPECT_EQ(result.output.rfind("edacrt_viewer: error: ", 0), 0u) << result.output;
+        EXPECT_NE(result.output.find("\nrun 'edacrt_viewer --help'"), std::string::npos)
+            << result.output;
+    }
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -1,5 +1,7 @@
 #include "util/output_file.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <utility>
@@ -41,6 +43,17 @@ void write_file(const std::filesystem::path& path, std::string_view bytes, std::
     OutputFile file(path, std::move(what));
     file.write(bytes);
     file.close();
+}
+
+void create_parent_folders(const std::filesystem::path& file) {
+    if (!file.has_parent_path()) return;
+    const std::filesystem::path folder = file.parent_path();
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (!error && ::access(folder.c_str(), W_OK) != 0) error.assign(errno, std::generic_category());
+    if (error)
+        throw InputError(file.string() + ": cannot write to the folder " + folder.string() + " (" +
+                         error.message() + ")");
 }
 
 }  // namespace edacrt

@@ -133,6 +133,19 @@ TEST(AnimationCli, BadAnimationFlagsAreErrors) {
                  "k2.obj: 2 triangles, other than the first key frame");
 }
 
+// A number JSON can write but a double cannot hold: an input error naming the file.
+TEST(AnimationCli, AnOutOfRangeNumberInAnAnimationFileIsAnInputError) {
+    const TempDir dir;
+    const auto file = dir.write(
+        "big.json", R"({"objects": [{"mesh": "builtin:cornell", "keys": [{"time": 1e999}]}]})");
+    const auto result = test::run_cli(kSmall + "--animate " + file.string() + " --out " +
+                                      (dir.path() / "x.png").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: " + file.string() + ": not valid JSON"),
+              std::string::npos)
+        << result.output;
+}
+
 TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     const TempDir dir;
     const auto result = test::run_cli(

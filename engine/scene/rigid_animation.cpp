@@ -223,7 +223,7 @@ AnimatedScene load_rigid_animation(const std::filesystem::path& path) {
     json root;
     try {
         root = json::parse(text.str());
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // also out_of_range: a number such as 1e999
         throw InputError(path.string() + ": not valid JSON: " + e.what());
     }
     reader.only_fields(root, "the file", {"camera", "objects"});

@@ -6,6 +6,7 @@
 
 #include "progress.h"
 #include "scene/builtin_scenes.h"
+#include "stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
 
@@ -109,7 +110,7 @@ Scene load_scene_verbose(const std::string& spec) {
 
 void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
     if (options.stats_path.empty()) return;
-    write_file(options.stats_path, stats.dump(2) + "\n", "statistics");
+    write_file(options.stats_path, json_text(stats), "statistics");
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

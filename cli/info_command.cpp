@@ -10,6 +10,7 @@
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
+#include "stats_json.h"
 #include "trace/tracer.h"
 #include "util/error.h"
 
@@ -151,7 +152,7 @@ void print_text(const nlohmann::json& j) {
 void run(const InfoOptions& o) {
     const nlohmann::json info = describe(o, load_scene(o.scene));
     if (o.json)
-        std::cout << info.dump(2) << "\n";
+        std::cout << json_text(info);
     else
         print_text(info);
 }

@@ -146,6 +146,21 @@ TEST(AnimationCli, AnOutOfRangeNumberInAnAnimationFileIsAnInputError) {
         << result.output;
 }
 
+// A key frame that is a symlink to itself: an input error naming it, not an internal error.
+TEST(AnimationCli, ASymlinkLoopInASequenceFolderIsAnInputError) {
+    const TempDir dir;
+    dir.write("k1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::filesystem::create_symlink("k2.obj", dir.path() / "k2.obj");
+    const auto result = test::run_cli(kSmall + "--sequence " + (dir.path() / "k%d.obj").string() +
+                                      " --out " + (dir.path() / "x.png").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: sequence "), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("cannot read " + (dir.path() / "k2.obj").string() + " in " +
+                                 dir.path().string()),
+              std::string::npos)
+        << result.output;
+}
+
 TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     const TempDir dir;
     const auto result = test::run_cli(

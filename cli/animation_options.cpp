@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 #include "common_options.h"
 #include "util/error.h"
@@ -29,6 +30,11 @@ std::string AnimationOptions::spec() const {
     if (!animate.empty() && !sequence.empty())
         throw InputError("--animate and --sequence both name an animation: give one");
     return sequence.empty() ? animate : "sequence:pattern=" + sequence;
+}
+
+void take_animation_file(std::string& scene, AnimationOptions& o) {
+    if (o.animate.empty() && o.sequence.empty() && is_animation_file(scene))
+        o.animate = std::exchange(scene, {});
 }
 
 void add_animation_options(CLI::App& command, AnimationOptions& o) {
@@ -70,6 +76,14 @@ std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& o
     parse_scene_update(o.update);  // refuses an unknown mode before any work
     if (!(o.shutter >= 0.0 && o.shutter <= 1e6))
         throw InputError("--shutter must be a number of seconds from 0 to 1e6");
+    if (o.spec().empty()) {  // a still scene has one moment
+        const char* flag = !o.frames.empty() ? "--frames" : o.time ? "--time" : nullptr;
+        if (o.shutter > 0.0) flag = "--shutter";
+        if (flag)
+            throw InputError(std::string(flag) +
+                             " is for an animation: give --animate or --sequence (or an "
+                             "animation file as --scene)");
+    }
     if (o.frames.empty()) {
         const double t = o.time.value_or(0.0);
         if (!std::isfinite(t)) throw InputError("--time must be a finite number of seconds");

@@ -63,7 +63,8 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
                   AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
                   const Camera& camera);
 
-void run(const RenderOptions& o) {
+void run(RenderOptions o) {
+    take_animation_file(o.common.scene, o.animation);
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
     RenderSettings settings = o.settings;

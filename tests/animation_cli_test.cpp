@@ -161,6 +161,47 @@ TEST(AnimationCli, ASymlinkLoopInASequenceFolderIsAnInputError) {
         << result.output;
 }
 
+// An animation file as --scene is read as --animate (as the viewer reads it); .JSON is .json;
+// commands that take no animation say to use --animate instead of parsing JSON as OBJ.
+TEST(AnimationCli, AnAnimationFileAsSceneIsAnimatedAndUpperCaseJsonIsJson) {
+    const TempDir dir;
+    const std::string bundled =
+        (test::source_dir() / "assets/animations/spot-and-teapot.anim.json").string();
+    const auto render = [&](const std::string& args, const std::string& name) {
+        const auto result =
+            test::run_cli(kSmall + args + " --time 1.5 --out " + (dir.path() / name).string());
+        EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
+        return bytes_of(dir.path() / name);
+    };
+    EXPECT_EQ(render("--scene " + bundled, "scene.png"), render("--animate " + bundled, "a.png"));
+    const std::string upper =
+        dir.write("box.JSON", R"({"objects": [{"mesh": "builtin:cornell", "keys": [{"time": 0}, )"
+                              R"({"time": 2, "translate": [0.1, 0, 0]}]}]})")
+            .string();
+    EXPECT_EQ(render("--scene " + upper, "upper_scene.png"),
+              render("--animate " + upper, "upper.png"));
+    const auto info = test::run_cli("info " + upper);
+    EXPECT_EQ(info.exit_code, 1) << info.output;
+    EXPECT_NE(info.output.find(upper + ": an animation file, not a scene: give it with --animate"),
+              std::string::npos)
+        << info.output;
+}
+
+// --frames, --time and --shutter choose moments of an animation: a still scene refuses them.
+TEST(AnimationCli, AnimationFlagsWithoutAnAnimationAreRefused) {
+    const TempDir dir;
+    for (const std::string& flag : {"--frames 0:1", "--time 1", "--shutter 0.1"}) {
+        const auto result = test::run_cli(kSmall + "--scene " + spot() + " " + flag + " --out " +
+                                          (dir.path() / "x_%d.png").string());
+        EXPECT_EQ(result.exit_code, 1) << flag << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: " + flag.substr(0, flag.find(' ')) +
+                                     " is for an animation"),
+                  std::string::npos)
+            << flag << "\n"
+            << result.output;
+    }
+}
+
 TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     const TempDir dir;
     const auto result = test::run_cli(

@@ -91,7 +91,7 @@ std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& o
             throw InputError("--out " + out +
                              " has a frame number but one image is rendered: "
                              "give --frames A:B, or no % in --out");
-        return {{0, t, out}};
+        return {{0, t, FramePattern::literal(out, "--out")}};
     }
     if (o.time) throw InputError("--time and --frames both choose what to render: give one");
     if (!(o.fps >= 1e-3 && o.fps <= 1e4))

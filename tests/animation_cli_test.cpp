@@ -202,6 +202,26 @@ TEST(AnimationCli, AnimationFlagsWithoutAnAnimationAreRefused) {
     }
 }
 
+// %% in --out is a literal %, in folders and in a single image's name.
+TEST(AnimationCli, DoublePercentInOutIsALiteralPercent) {
+    const TempDir dir;
+    const std::string still = "--scene " + spot();
+    const std::string animated = still + " --animate wave ";
+    const struct {
+        std::string args, out, written;
+    } cases[] = {
+        {still, "100%%/one%%.png", "100%/one%.png"},
+        {animated + "--frames 1:1", "a%%b/f%%_%02d.png", "a%b/f%_01.png"},
+    };
+    for (const auto& c : cases) {
+        const auto result =
+            test::run_cli(kSmall + c.args + " --out " + (dir.path() / c.out).string());
+        EXPECT_EQ(result.exit_code, 0) << c.args << "\n" << result.output;
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / c.written)) << c.written << "\n"
+                                                                              << result.output;
+    }
+}
+
 TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     const TempDir dir;
     const auto result = test::run_cli(

@@ -248,6 +248,11 @@ TEST(FramePattern, WritesAndReadsPrintfNumbers) {
     EXPECT_EQ(plain.path(3), "100%_3.obj");
     EXPECT_EQ(plain.match("100%_12.obj"), 12);
     EXPECT_FALSE(plain.match("100%_012.obj"));
+    const FramePattern folder("a%%b/c%%d_%d.png", "--out");
+    EXPECT_EQ(folder.path(3), "a%b/c%d_3.png");
+    EXPECT_EQ(folder.directory(), "a%b");
+    EXPECT_EQ(FramePattern::literal("a%%b/100%%.png", "--out"), "a%b/100%.png");
+    EXPECT_TRUE(contains(error_of([] { FramePattern::literal("5%.png", "--out"); }), "%%"));
     const auto error = [](const std::string& pattern) {
         return error_of([&] { FramePattern(pattern, "--out"); });
     };

@@ -4,6 +4,7 @@
 #include "parse_command_line.h"
 #include "scene/animation.h"
 #include "viewer.h"
+#include "viewer_state.h"
 
 int main(int argc, char** argv) {
     edacrt::app::ViewerOptions o;
@@ -13,7 +14,8 @@ int main(int argc, char** argv) {
     app.add_option("--method", o.method, "edacrt|dacrt|bvh|embree|naive")->capture_default_str();
     app.add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
     app.add_option("--spp", o.spp, "samples per pixel to accumulate")
-        ->check(CLI::Range(1, 1 << 20))
+        ->check(CLI::Range(edacrt::app::setting_range("spp").min,
+                           edacrt::app::setting_range("spp").max))
         ->capture_default_str();
     app.add_option("--width", o.width, "window width")->check(CLI::Range(64, 16384));
     app.add_option("--height", o.height, "window height")->check(CLI::Range(64, 16384));

@@ -9,6 +9,7 @@
 #include "common_options.h"
 #include "util/error.h"
 #include "util/frame_pattern.h"
+#include "util/printable.h"
 
 namespace edacrt::cli {
 namespace {
@@ -120,9 +121,10 @@ AnimatedScene load_animated_verbose(const std::string& scene, const AnimationOpt
     const auto start = std::chrono::steady_clock::now();
     AnimatedScene animated = load_animated_scene(scene, spec);
     for (const std::string& warning : animated.scene.warnings)
-        std::cerr << "edacrt: warning: " << warning << "\n";
-    std::cerr << "loaded " << animated.scene.source << ": " << animated.scene.triangle_count()
-              << " triangles, " << animated.scene.materials.size() << " materials, animated by "
+        std::cerr << "edacrt: warning: " << printable(warning) << "\n";
+    std::cerr << "loaded " << printable(animated.scene.source) << ": "
+              << animated.scene.triangle_count() << " triangles, "
+              << animated.scene.materials.size() << " materials, animated by "
               << animated.animation->spec() << " (" << animated.animation->duration() << " s) in "
               << seconds_since(start) << " s\n";
     return animated;

@@ -9,6 +9,7 @@
 #include "stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
+#include "util/printable.h"
 
 namespace edacrt::cli {
 
@@ -102,9 +103,10 @@ Scene load_scene_verbose(const std::string& spec) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = load_scene(spec);
     for (const std::string& warning : scene.warnings)
-        std::cerr << "edacrt: warning: " << warning << "\n";
-    std::cerr << "loaded " << scene.source << ": " << scene.triangle_count() << " triangles, "
-              << scene.materials.size() << " materials in " << seconds_since(start) << " s\n";
+        std::cerr << "edacrt: warning: " << printable(warning) << "\n";
+    std::cerr << "loaded " << printable(scene.source) << ": " << scene.triangle_count()
+              << " triangles, " << scene.materials.size() << " materials in "
+              << seconds_since(start) << " s\n";
     return scene;
 }
 

@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "parse_command_line.h"
 #include "util/error.h"
+#include "util/printable.h"
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -30,13 +31,14 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("bench")) run_bench();
         if (app.got_subcommand("info")) run_info();
     } catch (const edacrt::InputError& e) {
-        std::cerr << "edacrt: error: " << e.what() << "\n";
+        // Messages quote names from files: escaped, as everything printed from a file is.
+        std::cerr << "edacrt: error: " << edacrt::printable(e.what()) << "\n";
         return 1;
     } catch (const std::bad_alloc&) {
         std::cerr << "edacrt: error: out of memory\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "edacrt: internal error: " << e.what() << "\n";
+        std::cerr << "edacrt: internal error: " << edacrt::printable(e.what()) << "\n";
         return 2;
     }
     // The report on stdout is output too: a full disk or closed pipe must not pass as success.

@@ -170,6 +170,28 @@ TEST(InfoCli, ALatin1MaterialNameIsReplacedInJson) {
         << result.output;
 }
 
+// Names from files reach the terminal escaped: an ESC in a material or texture name cannot
+// recolour or clear it. So do errors quoting a path.
+TEST(InfoCli, NamesFromFilesArePrintedEscaped) {
+    const test::TempDir dir;
+    dir.write("s.mtl", "newmtl \x1B[31mred\nmap_Kd \x1B]0;title\x07.png\n");
+    const auto obj = dir.write("s.obj",
+                               "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "usemtl \x1B[31mred\nf 1 2 3\n");
+    const auto result = test::run_cli("info " + obj.string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(result.output.find('\x1B'), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("    \\x1B[31mred: 1 triangles"), std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find("map_Kd \\x1B]0;title\\x07.png (not rendered)"), std::string::npos)
+        << result.output;
+    const auto error = test::run_cli("info '" + (dir.path() / "\x1B[2J.obj").string() + "'");
+    EXPECT_EQ(error.exit_code, 1) << error.output;
+    EXPECT_EQ(error.output.find('\x1B'), std::string::npos) << error.output;
+    EXPECT_NE(error.output.find("\\x1B[2J.obj: cannot read OBJ file"), std::string::npos)
+        << error.output;
+}
+
 TEST(InfoCli, LargeScenesMatchTheirPublishedCounts) {
     // The scenes README's table: triangles by fan triangulation, vertices, degenerate faces.
     const struct {

@@ -28,9 +28,7 @@ inline bool is_keyword(std::string_view word) {
     return true;
 }
 
-/// Text from a file for a message: control bytes and bytes that are not valid UTF-8 escaped
-/// (\xNN), cut after `max_length` bytes ("..."), so garbage input cannot garble or flood the
-/// message.
+/// Text from a file for a message: printable() cut after `max_length` bytes.
 std::string escape(std::string_view text, std::size_t max_length = 60);
 
 /// A token for a message: escape()d to 40 bytes, in single quotes.

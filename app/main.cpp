@@ -1,8 +1,10 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
 
+#include "parse_command_line.h"
 #include "scene/animation.h"
 #include "viewer.h"
+#include "viewer_state.h"
 
 int main(int argc, char** argv) {
     edacrt::app::ViewerOptions o;
@@ -12,7 +14,8 @@ int main(int argc, char** argv) {
     app.add_option("--method", o.method, "edacrt|dacrt|bvh|embree|naive")->capture_default_str();
     app.add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
     app.add_option("--spp", o.spp, "samples per pixel to accumulate")
-        ->check(CLI::Range(1, 1 << 20))
+        ->check(CLI::Range(edacrt::app::setting_range("spp").min,
+                           edacrt::app::setting_range("spp").max))
         ->capture_default_str();
     app.add_option("--width", o.width, "window width")->check(CLI::Range(64, 16384));
     app.add_option("--height", o.height, "window height")->check(CLI::Range(64, 16384));
@@ -41,6 +44,6 @@ int main(int argc, char** argv) {
     app.add_option("--shutter", o.shutter,
                    "motion blur: seconds of shutter around the frame's time (0: none)")
         ->group(group);
-    CLI11_PARSE(app, argc, argv);
+    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
     return edacrt::app::run_viewer(o);
 }

@@ -1,5 +1,8 @@
 #include "script.h"
 
+#include <charconv>
+#include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "util/error.h"
@@ -8,17 +11,46 @@
 namespace edacrt::app {
 namespace {
 
+// What a verb's arguments are: words, counts (whole numbers >= 0), or finite numbers.
+enum class Args { words, count, real };
+
 struct Verb {
     std::string_view name;
     std::size_t args;
+    Args kind = Args::words;
 };
-constexpr Verb kVerbs[] = {{"set", 2},        {"view", 1},         {"wait-spp", 1},
-                           {"frames", 1},     {"orbit", 2},        {"quit", 0},
-                           {"screenshot", 1}, {"tab", 1},          {"panels", 1},
-                           {"analysis", 1},   {"help", 1},         {"check-layout", 0},
-                           {"save-view", 1},  {"save-linear", 1},  {"write-command", 1},
-                           {"record", 0},     {"pick", 2},         {"wait-analysis", 0},
-                           {"compare", 0},    {"wait-compare", 0}, {"wait-played", 1}};
+constexpr Verb kVerbs[] = {{"set", 2},
+                           {"view", 1},
+                           {"wait-spp", 1, Args::count},
+                           {"frames", 1, Args::count},
+                           {"orbit", 2, Args::real},
+                           {"quit", 0},
+                           {"screenshot", 1},
+                           {"tab", 1},
+                           {"panels", 1},
+                           {"analysis", 1},
+                           {"help", 1},
+                           {"check-layout", 0},
+                           {"save-view", 1},
+                           {"save-linear", 1},
+                           {"write-command", 1},
+                           {"record", 0},
+                           {"pick", 2, Args::real},
+                           {"wait-analysis", 0},
+                           {"compare", 0},
+                           {"wait-compare", 0},
+                           {"wait-played", 1, Args::count}};
+
+/// The whole word as a number of the verb's kind, or nullopt.
+std::optional<double> parse_number(const std::string& word, Args kind) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+    if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
+        return std::nullopt;
+    if (kind == Args::count && !(value >= 0.0 && value <= 1e9 && value == std::floor(value)))
+        return std::nullopt;
+    return value;
+}
 
 }  // namespace
 
@@ -42,6 +74,15 @@ std::vector<ScriptCommand> parse_script(std::string_view text, const std::string
         if (!verb) fail("unknown script command '" + command.verb + "'");
         if (command.args.size() != verb->args)
             fail("'" + command.verb + "' takes " + std::to_string(verb->args) + " argument(s)");
+        if (verb->kind != Args::words)
+            for (const std::string& word : command.args) {
+                const auto value = parse_number(word, verb->kind);
+                if (!value)
+                    fail("'" + command.verb + "' takes " +
+                         (verb->kind == Args::count ? "whole numbers from 0" : "numbers") +
+                         ", got '" + word + "'");
+                command.numbers.push_back(*value);
+            }
         commands.push_back(std::move(command));
     }
     return commands;

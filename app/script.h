@@ -26,7 +26,8 @@
 //                      (set play 1 first; set time T shows time T, paused)
 //   screenshot FILE    save the window as PNG
 //   quit
-// '#' starts a comment. Errors name the line.
+// '#' starts a comment. Errors name the line: a bad number or `set` value, a save or write
+// that fails, a render that fails while a wait-* waits for it.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,10 +37,12 @@ namespace edacrt::app {
 struct ScriptCommand {
     std::string verb;
     std::vector<std::string> args;
+    std::vector<double> numbers;  // the arguments of verbs that take numbers, checked
     int line = 0;
 };
 
-/// Throws InputError ("FILE:LINE: ...") for unknown verbs or wrong argument counts.
+/// Throws InputError ("FILE:LINE: ...") for unknown verbs, wrong argument counts or numbers
+/// (naming the value).
 std::vector<ScriptCommand> parse_script(std::string_view text, const std::string& source);
 
 /// Reads and parses a script file.

@@ -16,7 +16,8 @@ class ScriptRunner {
   public:
     explicit ScriptRunner(std::vector<ScriptCommand> commands) : commands_(std::move(commands)) {}
 
-    bool active() const { return next_ < commands_.size(); }
+    /// Commands are left, or a save whose outcome the script has not checked yet.
+    bool active() const { return next_ < commands_.size() || save_line_ > 0; }
 
     /// `shown_spp`: samples of the current request on screen (0 while a preview is shown).
     void step(ViewerState& s, int shown_spp, std::string& screenshot, bool& quit);
@@ -30,6 +31,7 @@ class ScriptRunner {
     bool analysis_asked_ = false;
     bool compare_asked_ = false;
     std::size_t next_ = 0;
+    int save_line_ = 0;  // the line of a save asked for and not checked yet
     int frames_left_ = -1;
     bool waiting_ = false;
     std::chrono::steady_clock::time_point wait_start_;

@@ -1,6 +1,8 @@
 // The viewer's settings as the script and tests drive them: `set KEY VALUE`, view names, and
 // whether a recording still describes the render in progress.
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "render/film.h"
@@ -9,6 +11,39 @@
 #include "viewer_state.h"
 
 namespace edacrt::app {
+namespace {
+
+constexpr SettingRange kSettingRanges[] = {
+    {"spp", 1, 1 << 20, 65536, true},
+    {"threads", 0, 1024, 64, true},  // 0: all cores
+    {"resolution", 0.125, 1, 1, false},
+    {"seed", 0, std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
+     true},
+    {"speed", 0.05, 4, 4, false},
+};
+
+std::string number_text(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", x);
+    return text;
+}
+
+}  // namespace
+
+const SettingRange& setting_range(std::string_view key) {
+    for (const SettingRange& r : kSettingRanges)
+        if (r.key == key) return r;
+    throw std::invalid_argument("setting_range: no setting " + std::string(key));
+}
+
+double check_setting(std::string_view key, double value) {
+    const SettingRange& r = setting_range(key);
+    if (!(value >= r.min && value <= r.max) || (r.integer && value != std::floor(value)))
+        throw InputError(std::string(key) + " must be " + (r.integer ? "a whole number " : "") +
+                         "from " + number_text(r.min) + " to " + number_text(r.max) + ", got " +
+                         number_text(value));
+    return value;
+}
 
 void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
     UiSettings& ui = s.ui;
@@ -31,19 +66,21 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         ui.integrator = parse_integrator(value);
     else if (key == "primary")
         ui.primary = parse_primary_shading(value);
-    else if (key == "spp")
-        ui.spp_target = int(number());
-    else if (key == "max-depth")
-        ui.max_depth = int(number());
-    else if (key == "ao-samples")
-        ui.ao_samples = int(number());
-    else if (key == "resolution")
-        ui.resolution_scale = float(number());
-    else if (key == "threads")
-        ui.threads = int(number());
-    else if (key == "seed")
-        ui.seed = int(number());
-    else if (key == "pause")
+    else if (key == "spp" || key == "threads" || key == "resolution" || key == "seed") {
+        const double v = check_setting(key, number());
+        if (key == "spp") ui.spp_target = int(v);
+        if (key == "threads") ui.threads = int(v);
+        if (key == "resolution") ui.resolution_scale = float(v);
+        if (key == "seed") ui.seed = int(v);
+    } else if (key == "max-depth" || key == "ao-samples") {
+        // Checked as the renderer checks them, now rather than when the render starts.
+        const double v = number();
+        RenderSettings settings;
+        int& field = key == "max-depth" ? settings.max_depth : settings.ao_samples;
+        field = v == std::floor(v) && std::abs(v) < 1e9 ? int(v) : -1;
+        validate(settings);
+        (key == "max-depth" ? ui.max_depth : ui.ao_samples) = field;
+    } else if (key == "pause")
         ui.paused = number() != 0;
     else if (key == "preset")
         p = preset_params(value);
@@ -79,9 +116,7 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
             a.playing = number() != 0;
             a.waited = 0.0;
         } else if (key == "speed") {
-            const double speed = number();
-            if (!(speed >= 0.05 && speed <= 4.0)) throw InputError("speed must be from 0.05 to 4");
-            a.speed = float(speed);
+            a.speed = float(check_setting(key, number()));
         } else if (key == "play-scale") {
             const double scale = number();
             if (scale != 1 && scale != 2 && scale != 4) throw InputError("play-scale is 1, 2 or 4");

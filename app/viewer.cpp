@@ -131,8 +131,7 @@ int run_viewer(const ViewerOptions& options) {
         s.playback.update = parse_scene_update(options.update);
         if (!(options.shutter >= 0.0 && options.shutter <= 1e3))
             throw InputError("--shutter must be a number of seconds from 0 to 1000");
-        if (!(options.speed >= 0.05 && options.speed <= 4.0))
-            throw InputError("--speed must be from 0.05 to 4");
+        check_setting("speed", options.speed);
         if (!std::isfinite(options.time)) throw InputError("--time must be finite");
     } catch (const std::exception& e) {
         std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
@@ -326,6 +325,7 @@ int run_viewer(const ViewerOptions& options) {
                     // A new request restarts the film (pausing does not: see below).
                     submitted = request;
                     request_id = worker.submit(std::move(request));
+                    s.render_error.clear();  // the previous request's
                 }
             }
             s.command_line = render_command_line(
@@ -421,9 +421,15 @@ int run_viewer(const ViewerOptions& options) {
                 std::cout << "saved " << path << "\n";
             };
             const auto save = std::exchange(s.save_requested, ViewerState::Save::none);
+            const auto save_failed = [&](const std::exception& e) {
+                s.status = s.save_error = e.what();
+                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            };
             try {
                 if (save == ViewerState::Save::shown && !s.save_overlays) save_shown();
-                if (save == ViewerState::Save::linear && s.frame) {
+                if (save == ViewerState::Save::linear && !s.frame)
+                    throw InputError("no image to save yet");
+                if (save == ViewerState::Save::linear) {
                     const std::string path =
                         s.save_path.empty() ? timestamped(s, ".exr") : s.save_path;
                     save_image(path, s.frame->image, save_settings(s));
@@ -431,15 +437,13 @@ int run_viewer(const ViewerOptions& options) {
                     std::cout << "saved " << path << "\n";
                 }
             } catch (const std::exception& e) {
-                s.status = e.what();
-                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+                save_failed(e);
             }
             ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
             try {
                 if (save == ViewerState::Save::shown && s.save_overlays) save_shown();
             } catch (const std::exception& e) {
-                s.status = e.what();
-                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+                save_failed(e);
             }
             if (save != ViewerState::Save::none) s.save_path.clear();
             s.layout_problems =

@@ -11,6 +11,7 @@
 #include "render/render_memory.h"
 #include "render/wavefront.h"
 #include "util/error.h"
+#include "util/printable.h"
 
 namespace edacrt::app {
 namespace {
@@ -45,7 +46,7 @@ void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions
             scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
         if (playback.frames) s.scene_label += ", animated (" + playback.frames->spec() + ")";
         for (const std::string& w : scene->warnings)
-            std::cerr << "edacrt_viewer: warning: " << w << "\n";
+            std::cerr << "edacrt_viewer: warning: " << printable(w) << "\n";
         // Playback settings carry over; the frames, the time and the history start over.
         playback.speed = s.playback.speed;
         playback.play_scale = s.playback.play_scale;

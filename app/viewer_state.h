@@ -144,8 +144,9 @@ struct ViewerState {
     Save save_requested = Save::none;
     bool save_overlays = true;
     std::string save_dir = "out";
-    std::string save_path;  // empty: save_dir/SCENE-TIME.png
-    std::string status;     // one line of feedback (saved, loaded, ...)
+    std::string save_path;   // empty: save_dir/SCENE-TIME.png
+    std::string save_error;  // why the last save failed (a script fails on it)
+    std::string status;      // one line of feedback (saved, loaded, ...)
 
     // Convergence of the render in progress: per pass, the RMS change of the mean image from
     // the previous pass, relative to the image's RMS (restarted with every new request).
@@ -209,6 +210,20 @@ void toggle_play(ViewerState& state);
 /// Adds a rendered frame's times to the playback history (once per frame: its first
 /// full-resolution pass; another view of the same time and method is not added).
 void record_frame_time(ViewerState& state, const Frame& frame, Method method);
+
+/// A numeric setting of the viewer, described once: `set KEY` and the command line check
+/// [min, max]; its widget slides over [min, ui_max].
+struct SettingRange {
+    std::string_view key;  // as `set` takes it
+    double min, max, ui_max;
+    bool integer;
+};
+
+/// The range of spp, threads, resolution, seed or speed.
+const SettingRange& setting_range(std::string_view key);
+
+/// Throws InputError naming the setting, its range and `value` when it is out of range.
+double check_setting(std::string_view key, double value);
 
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
 /// exposure, scene, explorer level and node). Throws InputError.

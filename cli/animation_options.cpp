@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 #include "common_options.h"
 #include "util/error.h"
 #include "util/frame_pattern.h"
+#include "util/printable.h"
 
 namespace edacrt::cli {
 namespace {
@@ -29,6 +31,11 @@ std::string AnimationOptions::spec() const {
     if (!animate.empty() && !sequence.empty())
         throw InputError("--animate and --sequence both name an animation: give one");
     return sequence.empty() ? animate : "sequence:pattern=" + sequence;
+}
+
+void take_animation_file(std::string& scene, AnimationOptions& o) {
+    if (o.animate.empty() && o.sequence.empty() && is_animation_file(scene))
+        o.animate = std::exchange(scene, {});
 }
 
 void add_animation_options(CLI::App& command, AnimationOptions& o) {
@@ -70,6 +77,14 @@ std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& o
     parse_scene_update(o.update);  // refuses an unknown mode before any work
     if (!(o.shutter >= 0.0 && o.shutter <= 1e6))
         throw InputError("--shutter must be a number of seconds from 0 to 1e6");
+    if (o.spec().empty()) {  // a still scene has one moment
+        const char* flag = !o.frames.empty() ? "--frames" : o.time ? "--time" : nullptr;
+        if (o.shutter > 0.0) flag = "--shutter";
+        if (flag)
+            throw InputError(std::string(flag) +
+                             " is for an animation: give --animate or --sequence (or an "
+                             "animation file as --scene)");
+    }
     if (o.frames.empty()) {
         const double t = o.time.value_or(0.0);
         if (!std::isfinite(t)) throw InputError("--time must be a finite number of seconds");
@@ -77,7 +92,7 @@ std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& o
             throw InputError("--out " + out +
                              " has a frame number but one image is rendered: "
                              "give --frames A:B, or no % in --out");
-        return {{0, t, out}};
+        return {{0, t, FramePattern::literal(out, "--out")}};
     }
     if (o.time) throw InputError("--time and --frames both choose what to render: give one");
     if (!(o.fps >= 1e-3 && o.fps <= 1e4))
@@ -106,9 +121,10 @@ AnimatedScene load_animated_verbose(const std::string& scene, const AnimationOpt
     const auto start = std::chrono::steady_clock::now();
     AnimatedScene animated = load_animated_scene(scene, spec);
     for (const std::string& warning : animated.scene.warnings)
-        std::cerr << "edacrt: warning: " << warning << "\n";
-    std::cerr << "loaded " << animated.scene.source << ": " << animated.scene.triangle_count()
-              << " triangles, " << animated.scene.materials.size() << " materials, animated by "
+        std::cerr << "edacrt: warning: " << printable(warning) << "\n";
+    std::cerr << "loaded " << printable(animated.scene.source) << ": "
+              << animated.scene.triangle_count() << " triangles, "
+              << animated.scene.materials.size() << " materials, animated by "
               << animated.animation->spec() << " (" << animated.animation->duration() << " s) in "
               << seconds_since(start) << " s\n";
     return animated;

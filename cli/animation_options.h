@@ -24,6 +24,10 @@ struct AnimationOptions {
     std::string spec() const;
 };
 
+/// An animation file given as --scene is read as --animate FILE (as the viewer reads it), when
+/// no other animation is named.
+void take_animation_file(std::string& scene, AnimationOptions& options);
+
 /// Adds the flags to `command`, whose --scene becomes optional (an animation file names its
 /// own geometry).
 void add_animation_options(CLI::App& command, AnimationOptions& options);
@@ -37,7 +41,8 @@ struct FrameJob {
 
 /// The images to render: with --frames A:B one per frame to the pattern `out` (a %d or %0Nd,
 /// util/frame_pattern.h), else one at --time (0 without it) to `out`. Throws InputError for bad
-/// flags or combinations (a pattern for one image, none for several).
+/// flags or combinations (a pattern for one image, none for several, --frames, --time or
+/// --shutter without an animation).
 std::vector<FrameJob> frame_jobs(const AnimationOptions& options, const std::string& out);
 
 /// The scene, animated as the flags say, with load_scene_verbose()'s report on stderr.

@@ -5,8 +5,10 @@
 
 #include "progress.h"
 #include "scene/builtin_scenes.h"
+#include "stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
+#include "util/printable.h"
 
 namespace edacrt::cli {
 
@@ -100,15 +102,16 @@ Scene load_scene_verbose(const std::string& spec) {
     const auto start = std::chrono::steady_clock::now();
     Scene scene = load_scene(spec);
     for (const std::string& warning : scene.warnings)
-        std::cerr << "edacrt: warning: " << warning << "\n";
-    std::cerr << "loaded " << scene.source << ": " << scene.triangle_count() << " triangles, "
-              << scene.materials.size() << " materials in " << seconds_since(start) << " s\n";
+        std::cerr << "edacrt: warning: " << printable(warning) << "\n";
+    std::cerr << "loaded " << printable(scene.source) << ": " << scene.triangle_count()
+              << " triangles, " << scene.materials.size() << " materials in "
+              << seconds_since(start) << " s\n";
     return scene;
 }
 
 void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
     if (options.stats_path.empty()) return;
-    write_file(options.stats_path, stats.dump(2) + "\n", "statistics");
+    write_file(options.stats_path, json_text(stats), "statistics");
 }
 
 void check_distinct_files(const std::vector<NamedPath>& outputs,

@@ -10,8 +10,10 @@
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
+#include "stats_json.h"
 #include "trace/tracer.h"
 #include "util/error.h"
+#include "util/printable.h"
 
 namespace edacrt::cli {
 namespace {
@@ -111,7 +113,9 @@ void print_text(const nlohmann::json& j) {
                       v[2].get<double>());
         return std::string(text);
     };
-    std::cout << j["scene"].get<std::string>() << "\n"
+    // Names come from files: printed escaped (json_text replaces what is not UTF-8).
+    const auto text = [](const nlohmann::json& name) { return printable(name.get<std::string>()); };
+    std::cout << text(j["scene"]) << "\n"
               << "  triangles    " << j["triangles"] << " (" << j["degenerate_triangles"]
               << " degenerate: zero area, never hit)\n"
               << "  vertices     " << j["vertices"] << ", " << j["shading_normals"]
@@ -123,11 +127,11 @@ void print_text(const nlohmann::json& j) {
               << (j["emitters"]["triangles"] == 0 ? " (a render lights it with the sky)" : "")
               << "\n  materials    " << j["materials"].size() << "\n";
     for (const auto& m : j["materials"]) {
-        std::cout << "    " << m["name"].get<std::string>() << ": " << m["triangles"]
-                  << " triangles, " << m["model"].get<std::string>() << "\n";
+        std::cout << "    " << text(m["name"]) << ": " << m["triangles"] << " triangles, "
+                  << m["model"].get<std::string>() << "\n";
         for (const auto& t : m["textures"])
-            std::cout << "      " << t["keyword"].get<std::string>() << " "
-                      << t["file"].get<std::string>() << " (not rendered)\n";
+            std::cout << "      " << text(t["keyword"]) << " " << text(t["file"])
+                      << " (not rendered)\n";
     }
     const auto& c = j["camera"];
     std::cout << "  camera       from " << c["from"].get<std::string>() << ": eye " << v3(c["eye"])
@@ -145,13 +149,13 @@ void print_text(const nlohmann::json& j) {
         std::cout << " " << name << " " << format_bytes(bytes);
     std::cout << "\n"
               << "  warnings     " << j["warnings"].size() << "\n";
-    for (const auto& w : j["warnings"]) std::cout << "    " << w.get<std::string>() << "\n";
+    for (const auto& w : j["warnings"]) std::cout << "    " << text(w) << "\n";
 }
 
 void run(const InfoOptions& o) {
     const nlohmann::json info = describe(o, load_scene(o.scene));
     if (o.json)
-        std::cout << info.dump(2) << "\n";
+        std::cout << json_text(info);
     else
         print_text(info);
 }

@@ -5,7 +5,9 @@
 #include <iostream>
 
 #include "commands.h"
+#include "parse_command_line.h"
 #include "util/error.h"
+#include "util/printable.h"
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -19,7 +21,7 @@ int main(int argc, char** argv) {
     const auto run_accuracy = edacrt::cli::add_accuracy_command(app);
     const auto run_bench = edacrt::cli::add_bench_command(app);
     const auto run_info = edacrt::cli::add_info_command(app);
-    CLI11_PARSE(app, argc, argv);
+    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
 
     try {
         if (app.got_subcommand("render")) run_render();
@@ -29,13 +31,14 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("bench")) run_bench();
         if (app.got_subcommand("info")) run_info();
     } catch (const edacrt::InputError& e) {
-        std::cerr << "edacrt: error: " << e.what() << "\n";
+        // Messages quote names from files: escaped, as everything printed from a file is.
+        std::cerr << "edacrt: error: " << edacrt::printable(e.what()) << "\n";
         return 1;
     } catch (const std::bad_alloc&) {
         std::cerr << "edacrt: error: out of memory\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "edacrt: internal error: " << e.what() << "\n";
+        std::cerr << "edacrt: internal error: " << edacrt::printable(e.what()) << "\n";
         return 2;
     }
     // The report on stdout is output too: a full disk or closed pipe must not pass as success.

@@ -22,6 +22,7 @@
 #include "render/sampler.h"
 #include "stats_json.h"
 #include "util/error.h"
+#include "util/output_file.h"
 
 namespace edacrt::cli {
 namespace {
@@ -62,7 +63,8 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
                   AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
                   const Camera& camera);
 
-void run(const RenderOptions& o) {
+void run(RenderOptions o) {
+    take_animation_file(o.common.scene, o.animation);
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
     check_distinct_files({{"--out", o.out}, {"--stats", o.common.stats_path}},
@@ -94,6 +96,9 @@ void run(const RenderOptions& o) {
     const std::vector<FrameJob> frames = frame_jobs(o.animation, o.out);
     if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
         throw InputError("--reference and --stats are for one image: give --time, not --frames");
+    // Where the images and statistics go is checked before the render, not after it.
+    for (const FrameJob& frame : frames) create_parent_folders(frame.out);
+    check_writable(o.common.stats_path, "--stats");
     AnimatedScene animated = load_animated_verbose(o.common.scene, o.animation);
     const Camera camera = choose_camera(animated.scene, o.camera);
     Renderer renderer(animated.scene, *tracer, camera, settings);
@@ -168,8 +173,6 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
     progress.finish();
     const double render_seconds = elapsed;
 
-    const std::filesystem::path out(frame.out);
-    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     // A temporary only: the image is gone before the statistics trace below.
     save_image(
         frame.out, renderer.film().mean(),

@@ -67,4 +67,8 @@ nlohmann::json to_json(const TraceDetail& detail) {
               {"deepest_level_max", deepest}}}};
 }
 
+std::string json_text(const nlohmann::json& json) {
+    return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 }  // namespace edacrt::cli

@@ -1,5 +1,6 @@
 #pragma once
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "trace/trace_stats.h"
 
@@ -7,5 +8,9 @@ namespace edacrt::cli {
 
 /// Per-level table and per-ray summary (mean and max) of a detailed trace, for --stats.
 nlohmann::json to_json(const TraceDetail& detail);
+
+/// Pretty JSON text with a final newline. Names from files need not be UTF-8 (a Latin-1 MTL):
+/// such bytes become U+FFFD instead of failing the dump.
+std::string json_text(const nlohmann::json& json);
 
 }  // namespace edacrt::cli

@@ -133,6 +133,95 @@ TEST(AnimationCli, BadAnimationFlagsAreErrors) {
                  "k2.obj: 2 triangles, other than the first key frame");
 }
 
+// A number JSON can write but a double cannot hold: an input error naming the file.
+TEST(AnimationCli, AnOutOfRangeNumberInAnAnimationFileIsAnInputError) {
+    const TempDir dir;
+    const auto file = dir.write(
+        "big.json", R"({"objects": [{"mesh": "builtin:cornell", "keys": [{"time": 1e999}]}]})");
+    const auto result = test::run_cli(kSmall + "--animate " + file.string() + " --out " +
+                                      (dir.path() / "x.png").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: " + file.string() + ": not valid JSON"),
+              std::string::npos)
+        << result.output;
+}
+
+// A key frame that is a symlink to itself: an input error naming it, not an internal error.
+TEST(AnimationCli, ASymlinkLoopInASequenceFolderIsAnInputError) {
+    const TempDir dir;
+    dir.write("k1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::filesystem::create_symlink("k2.obj", dir.path() / "k2.obj");
+    const auto result = test::run_cli(kSmall + "--sequence " + (dir.path() / "k%d.obj").string() +
+                                      " --out " + (dir.path() / "x.png").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: sequence "), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("cannot read " + (dir.path() / "k2.obj").string() + " in " +
+                                 dir.path().string()),
+              std::string::npos)
+        << result.output;
+}
+
+// An animation file as --scene is read as --animate (as the viewer reads it); .JSON is .json;
+// commands that take no animation say to use --animate instead of parsing JSON as OBJ.
+TEST(AnimationCli, AnAnimationFileAsSceneIsAnimatedAndUpperCaseJsonIsJson) {
+    const TempDir dir;
+    const std::string bundled =
+        (test::source_dir() / "assets/animations/spot-and-teapot.anim.json").string();
+    const auto render = [&](const std::string& args, const std::string& name) {
+        const auto result =
+            test::run_cli(kSmall + args + " --time 1.5 --out " + (dir.path() / name).string());
+        EXPECT_EQ(result.exit_code, 0) << args << "\n" << result.output;
+        return bytes_of(dir.path() / name);
+    };
+    EXPECT_EQ(render("--scene " + bundled, "scene.png"), render("--animate " + bundled, "a.png"));
+    const std::string upper =
+        dir.write("box.JSON", R"({"objects": [{"mesh": "builtin:cornell", "keys": [{"time": 0}, )"
+                              R"({"time": 2, "translate": [0.1, 0, 0]}]}]})")
+            .string();
+    EXPECT_EQ(render("--scene " + upper, "upper_scene.png"),
+              render("--animate " + upper, "upper.png"));
+    const auto info = test::run_cli("info " + upper);
+    EXPECT_EQ(info.exit_code, 1) << info.output;
+    EXPECT_NE(info.output.find(upper + ": an animation file, not a scene: give it with --animate"),
+              std::string::npos)
+        << info.output;
+}
+
+// --frames, --time and --shutter choose moments of an animation: a still scene refuses them.
+TEST(AnimationCli, AnimationFlagsWithoutAnAnimationAreRefused) {
+    const TempDir dir;
+    for (const std::string& flag : {"--frames 0:1", "--time 1", "--shutter 0.1"}) {
+        const auto result = test::run_cli(kSmall + "--scene " + spot() + " " + flag + " --out " +
+                                          (dir.path() / "x_%d.png").string());
+        EXPECT_EQ(result.exit_code, 1) << flag << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: " + flag.substr(0, flag.find(' ')) +
+                                     " is for an animation"),
+                  std::string::npos)
+            << flag << "\n"
+            << result.output;
+    }
+}
+
+// %% in --out is a literal %, in folders and in a single image's name.
+TEST(AnimationCli, DoublePercentInOutIsALiteralPercent) {
+    const TempDir dir;
+    const std::string still = "--scene " + spot();
+    const std::string animated = still + " --animate wave ";
+    const struct {
+        std::string args, out, written;
+    } cases[] = {
+        {still, "100%%/one%%.png", "100%/one%.png"},
+        {animated + "--frames 1:1", "a%%b/f%%_%02d.png", "a%b/f%_01.png"},
+    };
+    for (const auto& c : cases) {
+        const auto result =
+            test::run_cli(kSmall + c.args + " --out " + (dir.path() / c.out).string());
+        EXPECT_EQ(result.exit_code, 0) << c.args << "\n" << result.output;
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / c.written)) << c.written << "\n"
+                                                                              << result.output;
+    }
+}
+
 TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     const TempDir dir;
     const auto result = test::run_cli(

@@ -248,6 +248,11 @@ TEST(FramePattern, WritesAndReadsPrintfNumbers) {
     EXPECT_EQ(plain.path(3), "100%_3.obj");
     EXPECT_EQ(plain.match("100%_12.obj"), 12);
     EXPECT_FALSE(plain.match("100%_012.obj"));
+    const FramePattern folder("a%%b/c%%d_%d.png", "--out");
+    EXPECT_EQ(folder.path(3), "a%b/c%d_3.png");
+    EXPECT_EQ(folder.directory(), "a%b");
+    EXPECT_EQ(FramePattern::literal("a%%b/100%%.png", "--out"), "a%b/100%.png");
+    EXPECT_TRUE(contains(error_of([] { FramePattern::literal("5%.png", "--out"); }), "%%"));
     const auto error = [](const std::string& pattern) {
         return error_of([&] { FramePattern(pattern, "--out"); });
     };
@@ -338,6 +343,18 @@ TEST_F(RigidAnimation, BadFilesAreErrorsNamingTheEntry) {
     EXPECT_TRUE(contains(
         error(R"({"objects": [{"mesh": "spot.obj", "keys": [{"time": 0, "scale": -1}]}]})"),
         "scale: scales must be > 0"));
+    // Numbers a double holds but a float pose does not: a denormal scale flattens the object.
+    for (const char* key : {R"("scale": 1e-320)", R"("scale": [1, 1e-39, 1])", R"("scale": 1e39)"})
+        EXPECT_TRUE(contains(error(R"({"objects": [{"mesh": "spot.obj", "keys": [{"time": 0, )" +
+                                   std::string(key) + "}]}]}"),
+                             "scale: scales must be > 0, from 1.17549e-38 to 3.40282e+38"))
+            << key;
+    EXPECT_TRUE(contains(error(R"({"objects": [{"mesh": "spot.obj", "keys": [{"time": 0, )"
+                               R"("translate": [0, 1e300, 0]}]}]})"),
+                         "translate: components must be within +-3.40282e+38"));
+    EXPECT_TRUE(contains(error(R"({"objects": [{"mesh": "spot.obj", "keys": [{"time": 0, )"
+                               R"("rotate": [1e-170, 0, 0, 9]}]}]})"),
+                         "rotate: the axis must be a non-zero vector"));
     EXPECT_TRUE(contains(
         error(R"({"objects": [{"mesh": "spot.obj", "keys": [{"time": 0, "rotate": [0,0,0,9]}]}]})"),
         "rotate: the axis must be a non-zero vector"));

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "temp_dir.h"
 #include "test_paths.h"
 
 namespace edacrt {
@@ -153,6 +154,42 @@ TEST(InfoCli, DegenerateFacesMissingTexturesAndUnmodelledStatementsAreReported) 
     EXPECT_NE(text.output.find("64x32 path render at 16 spp"), std::string::npos) << text.output;
     EXPECT_NE(test::run_cli("info /no/such.obj").exit_code, 0);
     EXPECT_NE(test::run_cli("info builtin:cornell --integrator magic").exit_code, 0);
+}
+
+// Names from files are bytes: a Latin-1 name is not UTF-8, which JSON needs. The bytes become
+// U+FFFD in the JSON (the text form escapes them) instead of an internal error.
+TEST(InfoCli, ALatin1MaterialNameIsReplacedInJson) {
+    const test::TempDir dir;
+    dir.write("s.mtl", "newmtl caf\xE9\nKd 1 0 0\n");
+    const auto obj = dir.write("s.obj",
+                               "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "usemtl caf\xE9\nf 1 2 3\n");
+    const auto result = test::run_cli("info --json " + obj.string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("\"name\": \"caf\xEF\xBF\xBD\""), std::string::npos)
+        << result.output;
+}
+
+// Names from files reach the terminal escaped: an ESC in a material or texture name cannot
+// recolour or clear it. So do errors quoting a path.
+TEST(InfoCli, NamesFromFilesArePrintedEscaped) {
+    const test::TempDir dir;
+    dir.write("s.mtl", "newmtl \x1B[31mred\nmap_Kd \x1B]0;title\x07.png\n");
+    const auto obj = dir.write("s.obj",
+                               "mtllib s.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "usemtl \x1B[31mred\nf 1 2 3\n");
+    const auto result = test::run_cli("info " + obj.string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(result.output.find('\x1B'), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("    \\x1B[31mred: 1 triangles"), std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find("map_Kd \\x1B]0;title\\x07.png (not rendered)"), std::string::npos)
+        << result.output;
+    const auto error = test::run_cli("info '" + (dir.path() / "\x1B[2J.obj").string() + "'");
+    EXPECT_EQ(error.exit_code, 1) << error.output;
+    EXPECT_EQ(error.output.find('\x1B'), std::string::npos) << error.output;
+    EXPECT_NE(error.output.find("\\x1B[2J.obj: cannot read OBJ file"), std::string::npos)
+        << error.output;
 }
 
 TEST(InfoCli, LargeScenesMatchTheirPublishedCounts) {

@@ -161,6 +161,27 @@ TEST(MtlLoader, NegativeColoursAreClampedWithOneWarningPerFile) {
               "0 (4 statements in this file)");
 }
 
+// Values the BSDF replaces are kept as written but warned about, with the line.
+TEST(MtlLoader, InvalidNiAndNsAreWarnedAboutWithTheLine) {
+    std::vector<std::string> warnings;
+    parse("newmtl a\nNi 0\nNi -1.5\nNs -1e30\nNi 0.5\nNs 0\n", &warnings);
+    EXPECT_EQ(warnings, (std::vector<std::string>{
+                            "m.mtl:2: Ni 0 is not a positive index of refraction; 1.5 is used",
+                            "m.mtl:3: Ni -1.5 is not a positive index of refraction; 1.5 is used",
+                            "m.mtl:4: Ns -1e+30 is negative; 0 is used"}));
+}
+
+// Thousands of warnings of one kind are ten and a count.
+TEST(MtlLoader, RepeatedWarningsStopAfterTenOfAKind) {
+    std::string text;
+    for (int i = 0; i < 1000; ++i) text += "newmtl m" + std::to_string(i) + "\nNi 0\n";
+    std::vector<std::string> warnings;
+    parse(text, &warnings);
+    ASSERT_EQ(warnings.size(), 11u);
+    EXPECT_TRUE(contains(warnings[9], "m.mtl:20: Ni 0"));
+    EXPECT_EQ(warnings[10], "m.mtl: ... and 990 more invalid Ni values");
+}
+
 TEST(MtlLoader, ErrorsQuoteOnlyAShortEscapedExcerptOfTheFile) {
     // Any file can be named by mtllib; a message must not copy its content.
     const std::string secret = "root:x:0:0:" + std::string(200, 's') + "\x1b[31m\n";

@@ -231,6 +231,16 @@ TEST(ObjLoader, UndefinedMaterialWarnsOncePerNameAndUsesTheDefault) {
     EXPECT_TRUE(contains(scene.warnings[0], "t.obj:6: material 'blue' is not defined"));
 }
 
+// 20,000 undefined names printed 2.8 MB of warnings: ten of a kind, then a count.
+TEST(ObjLoader, RepeatedWarningsStopAfterTenOfAKind) {
+    std::string text(kSquare);
+    for (int i = 0; i < 20000; ++i) text += "usemtl m" + std::to_string(i) + "\nf 1 2 3\n";
+    const Scene scene = parse(text);
+    ASSERT_EQ(scene.warnings.size(), 11u);
+    EXPECT_TRUE(contains(scene.warnings[9], "t.obj:23: material 'm9' is not defined"));
+    EXPECT_EQ(scene.warnings[10], "t.obj: ... and 19990 more undefined materials");
+}
+
 TEST(ObjLoader, MtllibMayFollowUsemtl) {
     const Scene scene = parse("usemtl green\n" + std::string(kSquare) + "f 1 2 3\nmtllib m.mtl\n",
                               mtl_files({{"m.mtl", std::string(kTwoMaterials)}}));

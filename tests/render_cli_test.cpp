@@ -135,6 +135,22 @@ TEST_F(RenderCli, ARenderThatCannotFitIsRefusedUpFront) {
     EXPECT_EQ(result.output.find("loaded"), std::string::npos) << "refused before any work";
 }
 
+// A folder that cannot be made (a file is in the way) is an input error found before the
+// render, not an internal error after it.
+TEST_F(RenderCli, AnOutputFolderThatCannotBeMadeIsRefusedBeforeRendering) {
+    std::ofstream(path("file")) << "in the way";
+    for (const std::string& args :
+         {"--out " + path("file/sub/x.png"),
+          "--out " + path("x.png") + " --stats " + path("file/stats.json")}) {
+        const auto result = test::run_cli(kSmall + "--spp 1 " + args);
+        EXPECT_EQ(result.exit_code, 1) << args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: "), std::string::npos) << result.output;
+        EXPECT_NE(result.output.find(path("file/")), std::string::npos) << args << "\n"
+                                                                        << result.output;
+        EXPECT_EQ(result.output.find("loaded"), std::string::npos) << "refused before any work";
+    }
+}
+
 TEST_F(RenderCli, WriteErrorsFailTheCommand) {
     // /dev/full takes the open and fails the writes; small outputs fail only at the close.
     std::filesystem::create_symlink("/dev/full", path("full.pfm"));

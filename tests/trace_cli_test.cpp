@@ -153,7 +153,7 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
              " --leaf-rays 2.5",
          "leaf-rays: '2.5' is not an integer"},
-        {"frobnicate", "subcommand"},
+        {"frobnicate", "unknown command 'frobnicate'"},
     };
     for (const auto& c : cases) {
         const auto result = test::run_cli(c.args);

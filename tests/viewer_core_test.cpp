@@ -11,7 +11,9 @@
 #include "render_worker.h"
 #include "scene/builtin_scenes.h"
 #include "script.h"
+#include "script_runner.h"
 #include "util/error.h"
+#include "viewer_state.h"
 
 namespace edacrt::app {
 namespace {
@@ -192,6 +194,97 @@ TEST(Script, ParsesCommandsAndNamesTheLineOfAnError) {
     }
     EXPECT_THROW(parse_script("set bins\n", "s"), InputError);
     EXPECT_THROW(load_script("/no/such/script"), InputError);
+}
+
+/// The message of the InputError `f` throws, or "" when it throws none.
+template <typename F>
+std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Script, NumberErrorsNameTheLineAndTheValue) {
+    EXPECT_EQ(error_of([] { parse_script("quit\nwait-spp lots\n", "s"); }),
+              "s:2: 'wait-spp' takes whole numbers from 0, got 'lots'");
+    EXPECT_EQ(error_of([] { parse_script("frames -1\n", "s"); }),
+              "s:1: 'frames' takes whole numbers from 0, got '-1'");
+    EXPECT_EQ(error_of([] { parse_script("orbit 10 up\n", "s"); }),
+              "s:1: 'orbit' takes numbers, got 'up'");
+    EXPECT_EQ(error_of([] { parse_script("pick nan 3\n", "s"); }),
+              "s:1: 'pick' takes numbers, got 'nan'");
+    EXPECT_EQ(parse_script("orbit -2.5 1e1\n", "s")[0].numbers, (std::vector<double>{-2.5, 10.0}));
+}
+
+/// Runs `script` to its end (or its first error) against `state`, as the viewer does a frame
+/// at a time with nothing rendered.
+std::string run_script(ViewerState& state, const std::string& script) {
+    ScriptRunner runner(parse_script(script, "s"));
+    return error_of([&] {
+        std::string screenshot;
+        bool quit = false;
+        for (int frame = 0; frame < 100 && runner.active() && !quit; ++frame) {
+            runner.step(state, 0, screenshot, quit);
+            state.save_requested = ViewerState::Save::none;  // "saved"
+        }
+    });
+}
+
+// `set` checks what the widgets allow, from the same table (setting_range) or the renderer's
+// own checks, and names the script line.
+TEST(Script, SetValuesAreRangeChecked) {
+    ViewerState s;
+    for (const auto& [line, message] : std::vector<std::pair<std::string, std::string>>{
+             {"set spp -5", "script line 1: spp must be a whole number from 1 to 1048576, got -5"},
+             {"set spp 2.5", "spp must be a whole number"},
+             {"set threads -1", "threads must be a whole number from 0 to 1024, got -1"},
+             {"set resolution -0.5", "resolution must be from 0.125 to 1, got -0.5"},
+             {"set resolution 4", "resolution must be from 0.125 to 1, got 4"},
+             {"set seed -1", "seed must be a whole number from 0"},
+             {"set max-depth -1", "script line 1: max depth must be 0..1024, got -1"},
+             {"set ao-samples 1e12", "ao samples must be 1..1024"},
+             {"set spp x", "script line 1: 'spp' needs a number, got 'x'"},
+         }) {
+        const std::string error = run_script(s, line + "\n");
+        EXPECT_NE(error.find(message), std::string::npos) << line << ": " << error;
+    }
+    EXPECT_EQ(s.ui, UiSettings{}) << "nothing out of range was taken";
+    EXPECT_EQ(run_script(s, "set spp 64\nset threads 2\nset resolution 0.5\nset max-depth 3\n"),
+              "");
+    EXPECT_EQ(s.ui.spp_target, 64);
+    EXPECT_EQ(s.ui.threads, 2);
+    EXPECT_EQ(s.ui.resolution_scale, 0.5f);
+    EXPECT_EQ(s.ui.max_depth, 3);
+}
+
+// A save or write the script asked for that fails, fails the script at its line; a render that
+// failed ends a wait with its error instead of waiting five minutes.
+TEST(Script, FailedSavesAndRenderErrorsFailTheScript) {
+    ViewerState s;
+    ScriptRunner runner(parse_script("frames 0\nsave-linear /x.pfm\n", "s"));
+    std::string screenshot;
+    bool quit = false;
+    runner.step(s, 0, screenshot, quit);
+    EXPECT_EQ(s.save_requested, ViewerState::Save::linear);
+    EXPECT_TRUE(runner.active()) << "the outcome of the save is still to check";
+    s.save_requested = ViewerState::Save::none;  // what the viewer does on a failed save
+    s.save_error = "/x.pfm: cannot create PFM";
+    EXPECT_EQ(error_of([&] { runner.step(s, 0, screenshot, quit); }),
+              "script line 2: /x.pfm: cannot create PFM");
+
+    EXPECT_NE(run_script(s, "write-command /dev/full\n")
+                  .find("script line 1: /dev/full: cannot write command line"),
+              std::string::npos);
+    s.render_error = "c-i (C_I) must be positive";
+    for (const char* wait : {"wait-spp 4", "wait-analysis", "wait-compare"}) {
+        const std::string script = std::string("record\ncompare\n") + wait + "\n";
+        EXPECT_EQ(run_script(s, script),
+                  "script line 3: the render failed: c-i (C_I) must be positive")
+            << wait;
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "cli_runner.h"
 #include "render/exr_image.h"
 #include "render/image.h"
+#include "temp_dir.h"
 #include "test_paths.h"
 
 namespace edacrt {
@@ -350,6 +352,46 @@ TEST(ViewerScreenshots, ABrokenSceneOnTheCommandLineFailsClearly) {
     const auto result = test::run_command(EDACRT_VIEWER " /no/such/scene.obj");
     EXPECT_NE(result.exit_code, 0);
     EXPECT_NE(result.output.find("/no/such/scene.obj"), std::string::npos) << result.output;
+}
+
+// A save that fails fails the script at its line; a render that fails ends a wait with its
+// error (c-i 0 passes `set`'s range but not the tracer's check) instead of five minutes.
+TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const auto in_the_way = dir.write("file", "a file where a folder should be");
+    const struct {
+        std::string script, message;
+    } cases[] = {
+        {"wait-spp 1\nsave-linear " + (in_the_way / "x.pfm").string() + "\nframes 2\nquit\n",
+         "edacrt_viewer: error: script line 2: " + in_the_way.string() + "/x.pfm: "},
+        {"set c-i 0\nwait-spp 2\nquit\n",
+         "edacrt_viewer: error: script line 2: the render failed: EDACRT parameter c-i (C_I) "
+         "must be positive"},
+    };
+    for (const auto& c : cases) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto result = run_viewer_script(dir.path(), c.script, 320, 240,
+                                              "--hide-panels --integrator primary builtin:cornell");
+        EXPECT_EQ(result.exit_code, 1) << c.script << "\n" << result.output;
+        EXPECT_NE(result.output.find(c.message), std::string::npos) << c.script << "\n"
+                                                                    << result.output;
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::minutes(1));
+    }
+}
+
+// As edacrt reports its command line (tests/command_line_cli_test.cpp); no window is opened.
+TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
+    const auto version = test::run_command(EDACRT_VIEWER " --version");
+    EXPECT_EQ(version.exit_code, 0) << version.output;
+    EXPECT_EQ(version.output, "edacrt_viewer 0.1\n");
+    for (const char* args : {" --spp abc", " --bogus", " --width 10"}) {
+        const auto result = test::run_command(std::string(EDACRT_VIEWER) + args);
+        EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
+        EXPECT_EQ(result.output.rfind("edacrt_viewer: error: ", 0), 0u) << result.output;
+        EXPECT_NE(result.output.find("\nrun 'edacrt_viewer --help'"), std::string::npos)
+            << result.output;
+    }
 }
 
 }  // namespace

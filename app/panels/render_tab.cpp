@@ -61,17 +61,25 @@ void draw_render_tab(ViewerState& s) {
     if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
     tooltip("path: bounces after the camera ray");
     if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
-    ImGui::SliderInt("spp", &ui.spp_target, 1, 65536, "%d", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderInt("spp", &ui.spp_target, int(setting_range("spp").min),
+                     int(setting_range("spp").ui_max), "%d",
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per pixel to accumulate");
-    ImGui::SliderFloat("resolution", &ui.resolution_scale, 0.125f, 1.0f, "%.3f x image");
+    ImGui::SliderFloat("resolution", &ui.resolution_scale, float(setting_range("resolution").min),
+                       float(setting_range("resolution").ui_max), "%.3f x image",
+                       ImGuiSliderFlags_AlwaysClamp);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("render size as a fraction of the image region's pixels");
     if (!s.resolution_error.empty()) {
         error_text(s.resolution_error);
     }
-    ImGui::SliderInt("threads", &ui.threads, 0, 64, ui.threads == 0 ? "all" : "%d");
+    ImGui::SliderInt("threads", &ui.threads, int(setting_range("threads").min),
+                     int(setting_range("threads").ui_max), ui.threads == 0 ? "all" : "%d",
+                     ImGuiSliderFlags_AlwaysClamp);
     tooltip("worker threads of the renderer and the tracer (0: all cores)");
-    ImGui::InputInt("seed", &ui.seed);
+    if (ImGui::InputInt("seed", &ui.seed))
+        ui.seed =
+            std::clamp(ui.seed, int(setting_range("seed").min), int(setting_range("seed").max));
     tooltip(
         "the sample sequence: the same seed gives the same image for every method and thread "
         "count");

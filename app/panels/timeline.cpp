@@ -45,7 +45,8 @@ void draw_timeline(ViewerState& s) {
     }
     ImGui::SameLine();
     ImGui::SetNextItemWidth(speed_width);
-    ImGui::SliderFloat("##speed", &p.speed, 0.05f, 4.0f, "speed %.2gx",
+    ImGui::SliderFloat("##speed", &p.speed, float(setting_range("speed").min),
+                       float(setting_range("speed").ui_max), "speed %.2gx",
                        ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(

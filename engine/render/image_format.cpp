@@ -5,6 +5,7 @@
 
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/output_file.h"
 
 namespace edacrt {
 
@@ -33,7 +34,7 @@ bool is_linear(ImageFormat format) {
 
 void save_image(const std::filesystem::path& path, Image linear, const ImageOutput& output) {
     const ImageFormat format = image_format(path);
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    create_parent_folders(path);
     if (!is_linear(format)) linear = tone_map(std::move(linear), output.exposure, output.tone_map);
     switch (format) {
         case ImageFormat::png:
@@ -56,7 +57,7 @@ void save_srgb8(const std::filesystem::path& path, std::span<const std::uint8_t>
         throw InputError(path.string() +
                          ": an image as shown is 8-bit sRGB: save it as .png or "
                          ".jpg (the linear radiance can be saved as .hdr, .pfm or .exr)");
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    create_parent_folders(path);
     if (format == ImageFormat::jpg)
         write_jpg_rgb8(path, rgb, width, height, jpeg_quality);
     else

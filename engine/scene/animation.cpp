@@ -1,5 +1,7 @@
 #include "scene/animation.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -82,8 +84,7 @@ void Animation::frame(double t, Scene& scene) {
 
 AnimatedScene load_animated_scene(const std::string& scene_spec,
                                   const std::string& animation_spec) {
-    const bool own_scene =
-        animation_spec.ends_with(".json") || animation_spec.starts_with("sequence:");
+    const bool own_scene = animation_has_geometry(animation_spec);
     if (own_scene && !scene_spec.empty())
         throw InputError("the animation " + animation_spec +
                          " names its own geometry; give no "
@@ -93,7 +94,7 @@ AnimatedScene load_animated_scene(const std::string& scene_spec,
         throw InputError(animation_spec.empty()
                              ? "no scene given"
                              : "the animation " + animation_spec + " deforms a scene: name one");
-    if (animation_spec.ends_with(".json")) return load_rigid_animation(animation_spec);
+    if (is_animation_file(animation_spec)) return load_rigid_animation(animation_spec);
     if (animation_spec.starts_with("sequence:")) return open_obj_sequence(animation_spec);
     AnimatedScene out{load_scene(scene_spec), nullptr};
     if (animation_spec.empty()) return out;
@@ -102,8 +103,16 @@ AnimatedScene load_animated_scene(const std::string& scene_spec,
     return out;
 }
 
+bool is_animation_file(std::string_view spec) {
+    constexpr std::string_view kJson = ".json";
+    return spec.size() >= kJson.size() &&
+           std::equal(kJson.begin(), kJson.end(), spec.end() - kJson.size(), [](char a, char b) {
+               return a == std::tolower(static_cast<unsigned char>(b));
+           });
+}
+
 bool animation_has_geometry(std::string_view animation_spec) {
-    return animation_spec.ends_with(".json") || animation_spec.starts_with("sequence:");
+    return is_animation_file(animation_spec) || animation_spec.starts_with("sequence:");
 }
 
 std::string animation_help() {

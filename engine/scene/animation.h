@@ -67,6 +67,9 @@ struct AnimatedScene {
 /// for a bad spec, parameter or file, naming it.
 AnimatedScene load_animated_scene(const std::string& scene_spec, const std::string& animation_spec);
 
+/// Whether `spec` names an animation file (FILE.json, any case), which load_scene() refuses.
+bool is_animation_file(std::string_view spec);
+
 /// Whether `animation_spec` brings its own geometry (an animation file, an OBJ sequence) rather
 /// than deforming a scene.
 bool animation_has_geometry(std::string_view animation_spec);

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <glm/common.hpp>
 #include <string>
 #include <system_error>
@@ -31,12 +32,20 @@ class MtlParser {
                 first_negative_ + ": negative colour components are clamped to 0 (" +
                 std::to_string(negative_colours_) +
                 (negative_colours_ == 1 ? " statement" : " statements") + " in this file)");
+        negative_ns_.finish(warnings_, source_);
+        invalid_ni_.finish(warnings_, source_);
         return std::move(materials_);
     }
 
   private:
-    [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(source_ + ":" + std::to_string(lines_.number()) + ": " + what);
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(where() + what); }
+
+    std::string where() const { return source_ + ":" + std::to_string(lines_.number()) + ": "; }
+
+    static std::string number_text(float x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", double(x));
+        return text;
     }
 
     void parse_line(std::string_view line) {
@@ -69,8 +78,17 @@ class MtlParser {
             colour(tokens, keyword);  // ambient is not modelled; common enough to accept quietly
         } else if (is("Ns")) {
             material.ns = single_number(tokens, keyword);
+            // The BSDF takes a negative exponent as 0 and a non-positive index as glass's 1.5
+            // (render/bsdf.cpp): said here, where the line is known.
+            if (material.ns < 0.0f)
+                negative_ns_.add(warnings_, where() + "Ns " + number_text(material.ns) +
+                                                " is negative; 0 is used");
         } else if (is("Ni")) {
             material.ni = single_number(tokens, keyword);
+            if (!(material.ni > 0.0f))
+                invalid_ni_.add(warnings_, where() + "Ni " + number_text(material.ni) +
+                                               " is not a positive index of refraction; 1.5 "
+                                               "is used");
         } else if (is("illum")) {
             material.illum = integer(tokens, keyword);
         } else {
@@ -168,6 +186,8 @@ class MtlParser {
     std::vector<std::string> ignored_;  // lower case
     std::size_t negative_colours_ = 0;  // statements with a negative component
     std::string first_negative_;        // where the first one is, for the warning
+    WarningLimit negative_ns_{"negative Ns values"};
+    WarningLimit invalid_ni_{"invalid Ni values"};
 };
 
 }  // namespace

@@ -332,10 +332,11 @@ class ObjParser {
         if (missing.size() == parts.size()) missing = {names};  // none read: name the whole line
         for (const std::string_view name : missing) {
             ++missing_libraries_;
-            scene_.warnings.push_back(
+            missing_library_warnings_.add(
+                scene_.warnings,
                 where() + "cannot read material library " + quote(name) +
-                (mtl_dir_.empty() ? std::string() : " (looked in " + mtl_dir_ + ")") +
-                "; its materials are replaced by the default material");
+                    (mtl_dir_.empty() ? std::string() : " (looked in " + mtl_dir_ + ")") +
+                    "; its materials are replaced by the default material");
         }
     }
 
@@ -360,8 +361,9 @@ class ObjParser {
             if (material_ids_.emplace(material.name, id).second) {
                 scene_.materials.push_back(std::move(material));
             } else {
-                scene_.warnings.push_back(mtl_source + ": material " + quote(material.name) +
-                                          " is defined more than once; the first one is used");
+                redefined_.add(scene_.warnings,
+                               mtl_source + ": material " + quote(material.name) +
+                                   " is defined more than once; the first one is used");
             }
         }
         return true;
@@ -395,9 +397,10 @@ class ObjParser {
                 ++undefined;
                 // With a library missing, its materials are expected to be undefined.
                 if (missing_libraries_ == 0)
-                    scene_.warnings.push_back(source_ + ":" + std::to_string(use.line) +
-                                              ": material " + quote(use.name) +
-                                              " is not defined; the default material is used");
+                    undefined_.add(scene_.warnings,
+                                   source_ + ":" + std::to_string(use.line) + ": material " +
+                                       quote(use.name) +
+                                       " is not defined; the default material is used");
             }
             if (!use.used) continue;
             if (!default_id) {
@@ -406,6 +409,9 @@ class ObjParser {
             }
             ids[i] = *default_id;
         }
+        missing_library_warnings_.finish(scene_.warnings, source_);
+        redefined_.finish(scene_.warnings, source_);
+        undefined_.finish(scene_.warnings, source_);
         for (std::uint32_t& material : scene_.triangle_materials) material = ids[material];
         if (missing_libraries_ > 0 && undefined > 0)
             scene_.warnings.push_back(source_ + ": " + std::to_string(undefined) +
@@ -434,6 +440,9 @@ class ObjParser {
     std::size_t missing_libraries_ = 0;
     NameMap material_ids_;
     std::vector<std::string> ignored_keywords_;
+    WarningLimit missing_library_warnings_{"unreadable material libraries"};
+    WarningLimit redefined_{"materials defined more than once"};
+    WarningLimit undefined_{"undefined materials"};
 };
 
 }  // namespace

@@ -23,10 +23,20 @@ std::vector<std::int64_t> find_frames(const FramePattern& pattern) {
         throw InputError("sequence " + pattern.pattern() + ": cannot list " + directory.string() +
                          ": " + error.message());
     std::vector<std::int64_t> frames;
-    for (const auto& entry : it) {
-        const auto index = pattern.match(entry.path().filename().string());
-        if (index && entry.is_regular_file()) frames.push_back(*index);
+    // Error codes throughout: a symlink loop or a vanished file is bad input, not a bug.
+    for (; !error && it != std::filesystem::directory_iterator(); it.increment(error)) {
+        const auto index = pattern.match(it->path().filename().string());
+        if (!index) continue;
+        const bool regular = it->is_regular_file(error);
+        if (error)
+            throw InputError("sequence " + pattern.pattern() + ": cannot read " +
+                             it->path().string() + " in " + directory.string() + ": " +
+                             error.message());
+        if (regular) frames.push_back(*index);
     }
+    if (error)
+        throw InputError("sequence " + pattern.pattern() + ": cannot list " + directory.string() +
+                         ": " + error.message());
     if (frames.empty())
         throw InputError("sequence " + pattern.pattern() + ": no file in " + directory.string() +
                          " matches it");

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <initializer_list>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -20,6 +22,16 @@ namespace edacrt {
 namespace {
 
 using nlohmann::json;
+
+// The range of a normal float: positions are floats.
+constexpr double kFloatMin = std::numeric_limits<float>::min();
+constexpr double kFloatMax = std::numeric_limits<float>::max();
+
+std::string text(double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", x);
+    return buffer;
+}
 
 struct Key {
     double time = 0.0;
@@ -77,7 +89,13 @@ struct Reader {
         if (key.time < 0.0) fail(where + ".time", "times start at 0");
         if (previous && !(key.time > previous->time))
             fail(where + ".time", "key times must increase");
-        if (j.contains("translate")) key.translate = vec3(j["translate"], where + ".translate");
+        if (j.contains("translate")) {
+            key.translate = vec3(j["translate"], where + ".translate");
+            // Positions are floats: a translation past their range makes no finite pose.
+            for (int a = 0; a < 3; ++a)
+                if (!(std::abs(key.translate[a]) <= kFloatMax))
+                    fail(where + ".translate", "components must be within +-" + text(kFloatMax));
+        }
         if (j.contains("rotate")) {
             const json& r = j["rotate"];
             const std::string at = where + ".rotate";
@@ -87,16 +105,20 @@ struct Reader {
             if (!(glm::length(axis) > 0.0) || !std::isfinite(glm::length(axis)))
                 fail(at, "the axis must be a non-zero vector");
             key.axis = glm::normalize(axis);
+            if (!std::isfinite(key.axis.x + key.axis.y + key.axis.z))
+                fail(at, "the axis must be a non-zero vector");
             key.degrees = number(r[3], at);
         }
         if (j.contains("scale")) {
             const json& s = j["scale"];
             key.scale =
                 s.is_array() ? vec3(s, where + ".scale") : glm::dvec3(number(s, where + ".scale"));
-            if (!(key.scale.x > 0.0 && key.scale.y > 0.0 && key.scale.z > 0.0))
-                fail(where + ".scale",
-                     "scales must be > 0 (a mirror or a flat object is not "
-                     "a rigid motion)");
+            // A denormal scale (1e-320) passes > 0 but flattens the object in float.
+            for (int a = 0; a < 3; ++a)
+                if (!(key.scale[a] >= kFloatMin && key.scale[a] <= kFloatMax))
+                    fail(where + ".scale",
+                         "scales must be > 0, from " + text(kFloatMin) + " to " + text(kFloatMax) +
+                             " (a mirror or a flat object is not a rigid motion)");
         }
         return key;
     }

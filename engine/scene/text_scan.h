@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace edacrt::text_scan {
 
@@ -26,13 +28,37 @@ inline bool is_keyword(std::string_view word) {
     return true;
 }
 
-/// Text from a file for a message: control bytes and bytes that are not valid UTF-8 escaped
-/// (\xNN), cut after `max_length` bytes ("..."), so garbage input cannot garble or flood the
-/// message.
+/// Text from a file for a message: printable() cut after `max_length` bytes.
 std::string escape(std::string_view text, std::size_t max_length = 60);
 
 /// A token for a message: escape()d to 40 bytes, in single quotes.
 std::string quote(std::string_view text);
+
+/// Warnings of one kind (an undefined material, an invalid Ni): the first kWarningsPerKind are
+/// kept, the rest only counted, so that a file with thousands of them cannot flood the output
+/// (20,000 undefined materials printed 2.8 MB).
+class WarningLimit {
+  public:
+    static constexpr std::size_t kWarningsPerKind = 10;
+
+    /// `what`: the kind in the plural, for "... and N more undefined materials".
+    explicit WarningLimit(std::string what) : what_(std::move(what)) {}
+
+    void add(std::vector<std::string>& warnings, std::string warning) {
+        if (count_++ < kWarningsPerKind) warnings.push_back(std::move(warning));
+    }
+
+    /// Reports how many were left out, once, naming `source`.
+    void finish(std::vector<std::string>& warnings, const std::string& source) const {
+        if (count_ > kWarningsPerKind)
+            warnings.push_back(source + ": ... and " + std::to_string(count_ - kWarningsPerKind) +
+                               " more " + what_);
+    }
+
+  private:
+    std::string what_;
+    std::size_t count_ = 0;
+};
 
 /// The lines of a text, split at "\n", "\r\n" or a lone "\r" (classic Mac files), so that line
 /// numbers match what an editor shows. A UTF-8 byte order mark is skipped.

@@ -40,14 +40,19 @@ bool FramePattern::has_conversion(std::string_view text) {
     return false;
 }
 
+std::string FramePattern::literal(std::string_view text, std::string_view what) {
+    return unescape(text, std::string(text), what);
+}
+
 FramePattern::FramePattern(std::string pattern, std::string_view what)
     : pattern_(std::move(pattern)) {
     const std::filesystem::path path(pattern_);
     const std::string name = path.filename().string();
-    directory_ = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    if (FramePattern::has_conversion(directory_.string()))
+    const std::string directory = path.has_parent_path() ? path.parent_path().string() : ".";
+    if (FramePattern::has_conversion(directory))
         throw InputError(std::string(what) + " '" + pattern_ +
                          "': the frame number must be in the file name, not the directory");
+    directory_ = unescape(directory, pattern_, what);  // a folder may hold %% too
     // The conversion: the first '%' not part of "%%".
     std::size_t at = std::string::npos;
     for (std::size_t i = 0; i < name.size(); ++i) {

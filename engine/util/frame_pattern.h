@@ -26,6 +26,10 @@ class FramePattern {
 
     const std::string& pattern() const { return pattern_; }
 
+    /// A name without a frame number as printf would write it: %% as %. Throws InputError for
+    /// a lone %, naming `what`.
+    static std::string literal(std::string_view text, std::string_view what);
+
     /// True when `text` holds a % conversion at all (so a single output may be told apart).
     static bool has_conversion(std::string_view text);
 

@@ -49,7 +49,7 @@ nlohmann::json parse_json(std::string_view text, const std::string& source) {
     check_json_depth(text, source);
     try {
         return nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // out_of_range too: a number such as 1e999
         // The error quotes the token it stopped in, which may be a whole long string.
         throw InputError(source + ": not valid JSON: " + shorten(e.what(), 240));
     }

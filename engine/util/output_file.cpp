@@ -152,4 +152,15 @@ bool same_output_file(const std::filesystem::path& a, const std::filesystem::pat
     return ca == cb;
 }
 
+void create_parent_folders(const std::filesystem::path& file) {
+    if (!file.has_parent_path()) return;
+    const std::filesystem::path folder = file.parent_path();
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (!error && ::access(folder.c_str(), W_OK) != 0) error.assign(errno, std::generic_category());
+    if (error)
+        throw InputError(file.string() + ": cannot write to the folder " + folder.string() + " (" +
+                         error.message() + ")");
+}
+
 }  // namespace edacrt

@@ -37,6 +37,10 @@ class OutputFile {
     int error_ = 0;  // errno of the first failure
 };
 
+/// Creates the folders `file` is to be written in; throws InputError naming the folder when
+/// they cannot be made or written to (a file where a folder should be, no permission).
+void create_parent_folders(const std::filesystem::path& file);
+
 /// Writes `bytes` as the whole content of `path` through OutputFile.
 void write_file(const std::filesystem::path& path, std::string_view bytes, std::string what);
 

@@ -1,0 +1,34 @@
+#include "parse_command_line.h"
+
+#include <algorithm>
+#include <iostream>
+#include <string>
+
+namespace edacrt::cli {
+
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+    app.set_version_flag("--version", app.get_name() + " " + EDACRT_VERSION);
+    try {
+        app.parse(argc, argv);
+        return std::nullopt;
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        // The command that failed: the deepest one parsed, for the hint.
+        std::string command = app.get_name();
+        for (const CLI::App* at = &app; !at->get_subcommands().empty();) {
+            at = at->get_subcommands().front();
+            command += " " + at->get_name();
+        }
+        std::string what = e.what();
+        if (command == app.get_name() && argc > 1 && argv[1][0] != '-' &&
+            app.get_subcommands().empty() &&
+            !app.get_subcommands([](CLI::App*) { return true; }).empty())
+            what = "unknown command '" + std::string(argv[1]) + "'";
+        std::replace(what.begin(), what.end(), '\n', ' ');
+        std::cerr << app.get_name() << ": error: " << what << "\nrun '" << command
+                  << " --help' for the options\n";
+        return 2;
+    }
+}
+
+}  // namespace edacrt::cli

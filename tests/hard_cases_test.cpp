@@ -15,6 +15,7 @@
 #include <functional>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <map>
 #include <optional>
 #include <random>
@@ -22,6 +23,7 @@
 #include "geometry/offset.h"
 #include "scene/builtin_scenes.h"
 #include "scene/obj_loader.h"
+#include "trace/ray_file.h"
 #include "trace/tracer.h"
 #include "util/error.h"
 
@@ -49,6 +51,7 @@ std::optional<ld> intersect_ld(const Ray& ray, const Triangle& tri) {
     if (u < -kEdge || v < -kEdge || u + v > 1 + kEdge) return std::nullopt;
     const ld t = glm::dot(e2, q) / det;
     if (!(t > 0 && t >= ld(ray.tmin) && t <= ld(ray.tmax))) return std::nullopt;
+    if (t > ld(std::numeric_limits<float>::max())) return std::nullopt;  // not a float: a miss
     return t;
 }
 
@@ -478,8 +481,8 @@ TEST(HardCases, FarRaysThatMissNeverHit) {
             const glm::dvec3 side = glm::normalize(glm::cross(axis, random_direction(rng)));
             const bool miss = i % 2 || margin > 0.9;
             // A subdivided sphere's faces lie within 0.01 inside the sphere.
-            const double off = miss ? 1.0 + margin * std::pow(6000.0, unit(rng))
-                                    : (0.98 - margin) * unit(rng);
+            const double off =
+                miss ? 1.0 + margin * std::pow(6000.0, unit(rng)) : (0.98 - margin) * unit(rng);
             const glm::dvec3 to = off * side;
             rays.push_back({glm::vec3(from), glm::vec3(glm::normalize(to - from))});
         }
@@ -545,6 +548,29 @@ TEST(HardCases, FansOfAMillionThinTrianglesNeitherOverflowTheStackNorLeak) {
             tallies()[method].wrong += wrong;
         });
     }
+}
+
+TEST(HardCases, ShortDirectionsGiveTheSameHitsAsUnitOnes) {
+    // Directions from the shortest valid (validate_ray: 2^-64) to 1e-10 long: a distance d is
+    // then a t of d / |dir|, up to 1e21. Spheres of radius 1e-3 to 10 at up to 100 units, rays
+    // from outside towards them and from inside. (Below 1e-37, where the other components
+    // turn denormal, the box tests disagreed: such rays are refused.)
+    const Scene unit_sphere = make_builtin_scene("builtin:sphere:subdiv=2");
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const double length : {0x1p-64 * std::sqrt(3.0), 1e-19, 1e-15, 1e-10})
+        for (const double radius : {1e-3, 1.0, 10.0}) {
+            const glm::dvec3 centre = 10.0 * radius * random_direction(rng);
+            const Scene scene = transformed(unit_sphere, radius, centre);
+            std::vector<Ray> rays = sphere_rays(centre, radius, rng, 200);
+            for (Ray& ray : rays) {
+                ray.dir = glm::vec3(glm::dvec3(ray.dir) * length);
+                ASSERT_EQ(validate_ray(ray), "");
+            }
+            char label[64];
+            std::snprintf(label, sizeof label, "length %g, radius %g", length, radius);
+            expect_reference_hits(scene, rays, label, false);
+        }
 }
 
 TEST(HardCases, HugeAndTinyObjectsInOneScene) {

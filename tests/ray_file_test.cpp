@@ -68,6 +68,8 @@ TEST(RayFile, RejectsInvalidRaysNamingTheRay) {
     expect_error({{0, 0, 0}, {0, NAN, 1}}, "non-finite (NaN or inf) direction");
     expect_error({{0, 0, 0}, {0, 0, 0}}, "zero-length");
     expect_error({{0, 0, 0}, {0, -0.0f, 1e-45f}}, "zero-length");
+    expect_error({{0, 0, 0}, {2e-38f, -1e-39f, 0}}, "direction too short (longest component 2e-38");
+    expect_error({{0, 0, 0}, {0, 5e-20f, 0}}, "direction too short");
     expect_error({{0, 0, 0}, {0, 0, 1}, NAN, 1.0f}, "NaN tmin or tmax");
     expect_error({{0, 0, 0}, {0, 0, 1}, 2.0f, 1.0f}, "tmin greater than tmax");
     std::filesystem::remove(path);

@@ -179,5 +179,55 @@ TEST_F(RenderCli, WriteErrorsFailTheCommand) {
         << report.output;
 }
 
+TEST_F(RenderCli, ACameraWhoseArithmeticOverflowsIsRefusedEverywhere) {
+    // eye - look_at overflows float: every ray direction was NaN (bvh crashed, the others
+    // rendered black and exited 0, camera-rays wrote NaN rays).
+    const std::string view = " --eye 3e38,0,0 --look-at -3e38,0,0 ";
+    for (const std::string method : {"bvh", "edacrt", "naive"}) {
+        const auto result = test::run_cli(kSmall + "--spp 1 --method " + method + view + "--out " +
+                                          path("overflow.png"));
+        EXPECT_EQ(result.exit_code, 1) << result.output;
+        EXPECT_NE(result.output.find("camera: the view direction cannot be normalised"),
+                  std::string::npos)
+            << result.output;
+        EXPECT_FALSE(std::filesystem::exists(path("overflow.png")));
+    }
+    for (const std::string& command : std::vector<std::string>{
+             "camera-rays --scene builtin:cornell --width 4 --height 4 --out " + path("r.rays"),
+             "info builtin:cornell"}) {
+        const auto result = test::run_cli(command + view);
+        EXPECT_EQ(result.exit_code, 1) << command << ": " << result.output;
+        EXPECT_NE(result.output.find("camera:"), std::string::npos) << result.output;
+    }
+}
+
+TEST_F(RenderCli, AFaceOfAHundredThousandCornersIsTracedByEveryMethod) {
+    // The OBJ loader makes a fan of thin triangles from it, which once drove the recursions
+    // 13,000 levels deep, past the stack (edacrt from 60k corners, dacrt from 300k).
+    {
+        std::ofstream obj(path("fan.obj"));
+        const int corners = 100000;
+        for (int k = 0; k < corners; ++k) {
+            const double a = 2.0 * M_PI * k / corners;
+            obj << "v " << std::cos(a) << " " << std::sin(a) << " 0\n";
+        }
+        obj << "f";
+        for (int k = 1; k <= corners; ++k) obj << " " << k;
+        obj << "\n";
+    }
+    for (const std::string method : {"edacrt", "dacrt", "bvh"}) {
+        const auto result =
+            test::run_cli("render --scene " + path("fan.obj") + " --width 48 --height 48 " +
+                          "--spp 1 --integrator primary --eye 0.3,0.2,3 --look-at 0,0,0 " +
+                          "--method " + method + " --out " + path(method + ".pfm"));
+        ASSERT_EQ(result.exit_code, 0) << method << ": " << result.output;
+        // The disc fills the middle of the image and misses the corners.
+        const Image image = read_pfm(path(method + ".pfm"));
+        const auto pixel = [&](int x, int y) { return image.pixels[std::size_t(y * 48 + x)]; };
+        EXPECT_GT(pixel(24, 24).x, 0.0f) << method;
+        EXPECT_EQ(pixel(0, 0).x, 0.0f) << method;
+    }
+}
+
 }  // namespace
 }  // namespace edacrt

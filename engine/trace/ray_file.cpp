@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 
@@ -57,6 +58,17 @@ std::string validate_ray(const Ray& ray) {
     // A direction below the normal range would overflow the reciprocals the tests precompute.
     const float longest = std::max({std::abs(ray.dir.x), std::abs(ray.dir.y), std::abs(ray.dir.z)});
     if (longest < std::numeric_limits<float>::min()) return "zero-length (or denormal) direction";
+    // t counts lengths of the direction, so a short one makes every distance a huge t, and its
+    // other components denormal: near 2e-38 the box tests' reciprocals overflow and the methods
+    // disagree (tested down to 1e-30). Such a ray is the same ray with a longer direction.
+    if (longest < kShortestDirection) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "direction too short (longest component %.3g, below 2^-64 = 5.4e-20): scale "
+                      "it up, and tmin and tmax down by the same factor",
+                      double(longest));
+        return text;
+    }
     if (std::isnan(ray.tmin) || std::isnan(ray.tmax)) return "NaN tmin or tmax";
     if (!(ray.tmin <= ray.tmax)) return "tmin greater than tmax";
     return {};

@@ -12,7 +12,11 @@
 
 namespace edacrt {
 
-/// Empty when the ray can be traced; otherwise what is wrong with it ("NaN origin", ...).
+/// The shortest direction a ray may have, by its longest component (see validate_ray).
+inline constexpr float kShortestDirection = 0x1p-64f;
+
+/// Empty when the ray can be traced; otherwise what is wrong with it ("NaN origin", a
+/// direction whose longest component is below kShortestDirection, ...).
 std::string validate_ray(const Ray& ray);
 
 /// Reads and validates a ray file. Throws InputError naming the file and the first bad ray.

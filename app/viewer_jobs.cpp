@@ -42,8 +42,10 @@ void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions
             s.scene_camera = default_camera(*scene);
             s.camera.reset(cli::choose_camera(*scene, flags));
         }
-        s.scene_label =
-            scene->source + ": " + std::to_string(scene->triangle_count()) + " triangles";
+        // The file's name only: an absolute path wraps the tab's header onto several lines
+        // (the full path is the header's tooltip).
+        s.scene_label = std::filesystem::path(scene->source).filename().string() + ": " +
+                        std::to_string(scene->triangle_count()) + " triangles";
         if (playback.frames) s.scene_label += ", animated (" + playback.frames->spec() + ")";
         for (const std::string& w : scene->warnings)
             std::cerr << "edacrt_viewer: warning: " << printable(w) << "\n";

@@ -8,6 +8,7 @@ namespace edacrt::app {
 
 void draw_scene_tab(ViewerState& s) {
     ImGui::TextWrapped("%s", s.scene_label.c_str());
+    if (s.scene && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.scene->source.c_str());
     ImGui::SetNextItemWidth(-1.0f);
     if (ImGui::BeginCombo("##scenes", "choose a scene...")) {
         for (const CatalogEntry& entry : s.scene_list.entries) {

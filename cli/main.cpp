@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "interrupt.h"
 #include "parse_command_line.h"
 #include "util/error.h"
 #include "util/printable.h"
@@ -30,6 +31,10 @@ int main(int argc, char** argv) {
         if (app.got_subcommand("accuracy")) run_accuracy();
         if (app.got_subcommand("bench")) run_bench();
         if (app.got_subcommand("info")) run_info();
+    } catch (const edacrt::cli::Interrupted& e) {
+        std::fflush(stdout);  // the report of what was written comes first
+        std::cerr << "edacrt: interrupted: " << edacrt::printable(e.what()) << "\n";
+        return edacrt::cli::kInterruptedStatus;
     } catch (const edacrt::InputError& e) {
         // Messages quote names from files: escaped, as everything printed from a file is.
         std::cerr << "edacrt: error: " << edacrt::printable(e.what()) << "\n";

@@ -385,6 +385,9 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
     const auto version = test::run_command(EDACRT_VIEWER " --version");
     EXPECT_EQ(version.exit_code, 0) << version.output;
     EXPECT_EQ(version.output, "edacrt_viewer 0.1\n");
+    const auto help = test::run_command(EDACRT_VIEWER " --help");
+    EXPECT_EQ(help.exit_code, 0) << help.output;
+    EXPECT_NE(help.output.find("70 internal error"), std::string::npos) << help.output;
     for (const char* args : {" --spp abc", " --bogus", " --width 10"}) {
         const auto result = test::run_command(std::string(EDACRT_VIEWER) + args);
         EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
 #include "render/exr_image.h"
@@ -227,6 +228,32 @@ TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
     std::ifstream in(dir / "bookmarks.json");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), damaged);
     std::filesystem::remove_all(dir);
+}
+
+// The script's `bookmark NAME` writes the --bookmarks file; a file that cannot be written
+// fails the script at its line.
+TEST(ViewerScreenshots, AScriptSavesABookmarkOrFailsAtItsLine) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const std::filesystem::path file = dir.path() / "config" / "bookmarks.json";
+    const auto saved = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
+                                         "--bookmarks " + file.string() + " builtin:cornell");
+    ASSERT_EQ(saved.exit_code, 0) << saved.output;
+    const auto json = nlohmann::json::parse(std::ifstream(file));
+    const auto& list = json["scenes"]["builtin:cornell"];
+    ASSERT_EQ(list.size(), 1u) << json.dump();
+    EXPECT_EQ(list[0]["name"], "front");
+    EXPECT_EQ(list[0]["eye"].size(), 3u);
+
+    // A bookmarks file under a regular file: its folder cannot be made.
+    const std::filesystem::path blocked = dir.write("plain", "") / "bookmarks.json";
+    const auto failed = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
+                                          "--bookmarks " + blocked.string() + " builtin:cornell");
+    EXPECT_EQ(failed.exit_code, 1) << failed.output;
+    EXPECT_NE(failed.output.find("edacrt_viewer: error: script line 2: bookmarks not saved: " +
+                                 blocked.string()),
+              std::string::npos)
+        << failed.output;
 }
 
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {

@@ -126,7 +126,7 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
         return true;
     } catch (const InputError& e) {
         if (s.resolution_error != e.what())
-            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         s.resolution_error = e.what();
         s.ui.resolution_scale = s.accepted_resolution_scale;
         request.settings.width = submitted.settings.width;

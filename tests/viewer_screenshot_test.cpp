@@ -424,5 +424,29 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
     }
 }
 
+// Names from files (a script's words, a scene path) reach the terminal escaped: an ESC byte
+// in them cannot send escape codes.
+TEST(ViewerCommandLine, ErrorsQuotingFilesAreEscaped) {
+    const test::TempDir dir;
+    const std::string esc = "\x1b[2J";
+    const auto expect_escaped = [](const test::CliResult& result, const std::string& message) {
+        EXPECT_EQ(result.exit_code, 1) << result.output;
+        EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
+        EXPECT_EQ(result.output.find('\x1b'), std::string::npos) << result.output;
+    };
+    // Both refused before any window opens.
+    const std::filesystem::path script = dir.write("parse.txt", "frames 1\nfly" + esc + "away\n");
+    expect_escaped(test::run_command(EDACRT_VIEWER " --script " + script.string()),
+                   "edacrt_viewer: error: " + script.string() +
+                       ":2: unknown script command 'fly\\x1B[2Jaway'");
+    const std::string scene = (dir.path() / ("no" + esc + "scene.obj")).string();
+    expect_escaped(test::run_command(EDACRT_VIEWER " '" + scene + "'"), "no\\x1B[2Jscene.obj");
+    // A script line that fails while the viewer runs.
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    expect_escaped(run_viewer_script(dir.path(), "frames 1\nset method " + esc + "x\nquit\n", 1280,
+                                     800, "builtin:cornell"),
+                   "edacrt_viewer: error: script line 2: ");
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -45,5 +45,7 @@ int main(int argc, char** argv) {
                    "motion blur: seconds of shutter around the frame's time (0: none)")
         ->group(group);
     if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
-    return edacrt::app::run_viewer(o);
+    // What escapes the viewer's own reports is a bug: an internal error, not an abort.
+    return edacrt::cli::run_reporting_errors("edacrt_viewer",
+                                             [&] { return edacrt::app::run_viewer(o); });
 }

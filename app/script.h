@@ -17,6 +17,8 @@
 //   save-view FILE     save the image region as shown (.png or .jpg)
 //   save-linear FILE   save the render (.exr, .pfm, .hdr linear; .png, .jpg tone-mapped)
 //   write-command FILE write the `edacrt render` command that reproduces the view
+//   bookmark NAME      save the view as the scene's bookmark NAME in the bookmarks file
+//                      (--bookmarks), as the Camera tab's "save view" does
 //   record             record the view's recursion (recursion explorer)
 //   pick X Y           follow the camera ray under window position X, Y (traversal debugger)
 //   wait-analysis      until the recording or the followed ray is ready

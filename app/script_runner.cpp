@@ -5,6 +5,7 @@
 
 #include "util/error.h"
 #include "util/output_file.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
@@ -89,6 +90,12 @@ void ScriptRunner::step(ViewerState& s, int shown_spp, std::string& screenshot, 
             try {
                 create_parent_folders(c.args[0]);
                 write_file(c.args[0], s.command_line + "\n", "command line");
+            } catch (const InputError& e) {
+                fail(e.what());
+            }
+        } else if (c.verb == "bookmark") {
+            try {
+                save_bookmark(s, c.args[0]);
             } catch (const InputError& e) {
                 fail(e.what());
             }

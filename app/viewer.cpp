@@ -36,6 +36,7 @@
 #include "script.h"
 #include "script_runner.h"
 #include "util/error.h"
+#include "util/printable.h"
 #include "viewer_jobs.h"
 #include "viewer_state.h"
 
@@ -123,7 +124,7 @@ int run_viewer(const ViewerOptions& options) {
         s.ui.spp_target = options.spp;
         if (!options.script.empty()) script.emplace(load_script(options.script));
     } catch (const std::exception& e) {
-        std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         return 1;
     }
     s.panels_hidden = options.hide_panels;
@@ -134,7 +135,7 @@ int run_viewer(const ViewerOptions& options) {
         check_setting("speed", options.speed);
         if (!std::isfinite(options.time)) throw InputError("--time must be finite");
     } catch (const std::exception& e) {
-        std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+        std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         return 1;
     }
     s.playback.motion_blur = options.shutter > 0.0;
@@ -143,13 +144,13 @@ int run_viewer(const ViewerOptions& options) {
     s.playback.playing = options.play;
     load_into(s, options.scene, options.camera, options.animate);
     if (!s.scene) {
-        std::cerr << "edacrt_viewer: error: " << s.scene_error << "\n";
+        std::cerr << "edacrt_viewer: error: " << printable(s.scene_error) << "\n";
         return 1;
     }
     if (s.playback.frames) {
         seek(s, options.time);
         if (!s.playback.error.empty()) {
-            std::cerr << "edacrt_viewer: error: " << s.playback.error << "\n";
+            std::cerr << "edacrt_viewer: error: " << printable(s.playback.error) << "\n";
             return 1;
         }
     } else if (!options.animate.empty() || options.play || options.time != 0.0) {
@@ -160,14 +161,15 @@ int run_viewer(const ViewerOptions& options) {
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
     if (!s.bookmarks_path.empty()) {
         const std::vector<std::string> problems = s.bookmarks.load(s.bookmarks_path);
-        for (const std::string& p : problems) std::cerr << "edacrt_viewer: warning: " << p << "\n";
+        for (const std::string& p : problems)
+            std::cerr << "edacrt_viewer: warning: " << printable(p) << "\n";
         if (!problems.empty()) {
             s.status = problems.front() +
                        (problems.size() > 1
                             ? " (and " + std::to_string(problems.size() - 1) + " more on stderr)"
                             : std::string()) +
                        "; the file is copied to a .bak before bookmarks are next saved";
-            std::cerr << "edacrt_viewer: warning: " << s.bookmarks_path
+            std::cerr << "edacrt_viewer: warning: " << printable(s.bookmarks_path)
                       << ": copied to a .bak before bookmarks are next saved\n";
         }
     }
@@ -177,7 +179,8 @@ int run_viewer(const ViewerOptions& options) {
     s.scene_list = scene_catalog(assets);
 
     glfwSetErrorCallback([](int code, const char* text) {
-        std::cerr << "edacrt_viewer: GLFW error " << code << ": " << text << "\n";
+        std::cerr << "edacrt_viewer: GLFW error " << code << ": " << printable(text ? text : "")
+                  << "\n";
     });
     if (!glfwInit()) {
         std::cerr << "edacrt_viewer: error: cannot initialise GLFW (is there a display?)\n";
@@ -418,12 +421,12 @@ int run_viewer(const ViewerOptions& options) {
                 const std::string path = s.save_path.empty() ? timestamped(s, ".png") : s.save_path;
                 save_framebuffer(path, region.x, region.y, region.w, region.h, fb_height);
                 s.status = "saved " + path;
-                std::cout << "saved " << path << "\n";
+                std::cout << "saved " << printable(path) << "\n";
             };
             const auto save = std::exchange(s.save_requested, ViewerState::Save::none);
             const auto save_failed = [&](const std::exception& e) {
                 s.status = s.save_error = e.what();
-                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+                std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
             };
             try {
                 if (save == ViewerState::Save::shown && !s.save_overlays) save_shown();
@@ -434,7 +437,7 @@ int run_viewer(const ViewerOptions& options) {
                         s.save_path.empty() ? timestamped(s, ".exr") : s.save_path;
                     save_image(path, s.frame->image, save_settings(s));
                     s.status = "saved " + path;
-                    std::cout << "saved " << path << "\n";
+                    std::cout << "saved " << printable(path) << "\n";
                 }
             } catch (const std::exception& e) {
                 save_failed(e);
@@ -470,13 +473,13 @@ int run_viewer(const ViewerOptions& options) {
                 }
                 if (!screenshot.empty()) {
                     save_framebuffer(screenshot, 0, 0, fb_width, fb_height, fb_height);
-                    std::cout << "screenshot " << screenshot << " (" << fb_width << "x" << fb_height
-                              << ", " << shown_spp << " spp, frame " << frame_number
+                    std::cout << "screenshot " << printable(screenshot) << " (" << fb_width << "x"
+                              << fb_height << ", " << shown_spp << " spp, frame " << frame_number
                               << ", image region " << region.x << " " << region.y << " " << region.w
                               << " " << region.h << ")\n";
                 }
             } catch (const std::exception& e) {
-                std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+                std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
                 exit_code = 1;
                 quit = true;
             }

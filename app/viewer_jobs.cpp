@@ -128,7 +128,7 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
         return true;
     } catch (const InputError& e) {
         if (s.resolution_error != e.what())
-            std::cerr << "edacrt_viewer: error: " << e.what() << "\n";
+            std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         s.resolution_error = e.what();
         s.ui.resolution_scale = s.accepted_resolution_scale;
         request.settings.width = submitted.settings.width;
@@ -237,6 +237,37 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
         a->error = e.what();
     }
     return a;
+}
+
+namespace {
+
+/// Writes the bookmarks file; the status line says where.
+void write_bookmarks(ViewerState& s) {
+    if (s.bookmarks_path.empty())
+        throw InputError("bookmarks not saved: neither XDG_CONFIG_HOME nor HOME is set");
+    std::string backup;
+    try {
+        backup = s.bookmarks.save(s.bookmarks_path);
+    } catch (const InputError& e) {
+        throw InputError(std::string("bookmarks not saved: ") + e.what());
+    }
+    s.status = "bookmarks saved to " + s.bookmarks_path;
+    if (!backup.empty()) {
+        s.status += "; the damaged file before it is kept as " + backup;
+        std::cerr << "edacrt_viewer: " << printable(s.status) << "\n";
+    }
+}
+
+}  // namespace
+
+void save_bookmark(ViewerState& s, const std::string& name) {
+    s.bookmarks.put(s.scene_path, {name, s.camera.camera()});
+    write_bookmarks(s);
+}
+
+void remove_bookmark(ViewerState& s, const std::string& name) {
+    s.bookmarks.remove(s.scene_path, name);
+    write_bookmarks(s);
 }
 
 /// A file name from the scene and the time: out/sponza-20261201-235959.png.

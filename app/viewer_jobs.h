@@ -43,6 +43,15 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
                                         bool crop);
 
+/// Saves the view as the scene's bookmark `name` (replacing one of that name) and writes the
+/// bookmarks file, for the Camera tab's "save view" and the script's `bookmark`; the status
+/// line says where. Throws InputError ("bookmarks not saved: ...") when no file is known
+/// (neither XDG_CONFIG_HOME nor HOME is set) or it cannot be written.
+void save_bookmark(ViewerState& state, const std::string& name);
+
+/// Removes the scene's bookmark `name` and writes the file; throws as save_bookmark() does.
+void remove_bookmark(ViewerState& state, const std::string& name);
+
 /// SAVE_DIR/SCENE-YYYYmmdd-HHMMSS.EXT.
 std::string timestamped(const ViewerState& state, const std::string& extension);
 

@@ -1,12 +1,11 @@
 // edacrt: the headless command-line tool. Renders images and traces ray files with any method.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <exception>
 #include <iostream>
 
 #include "commands.h"
+#include "interrupt.h"
 #include "parse_command_line.h"
-#include "util/error.h"
 #include "util/printable.h"
 
 int main(int argc, char** argv) {
@@ -23,28 +22,26 @@ int main(int argc, char** argv) {
     const auto run_info = edacrt::cli::add_info_command(app);
     if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
 
-    try {
-        if (app.got_subcommand("render")) run_render();
-        if (app.got_subcommand("trace")) run_trace();
-        if (app.got_subcommand("camera-rays")) run_camera_rays();
-        if (app.got_subcommand("accuracy")) run_accuracy();
-        if (app.got_subcommand("bench")) run_bench();
-        if (app.got_subcommand("info")) run_info();
-    } catch (const edacrt::InputError& e) {
-        // Messages quote names from files: escaped, as everything printed from a file is.
-        std::cerr << "edacrt: error: " << edacrt::printable(e.what()) << "\n";
-        return 1;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "edacrt: error: out of memory\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "edacrt: internal error: " << edacrt::printable(e.what()) << "\n";
-        return 2;
-    }
+    const int status = edacrt::cli::run_reporting_errors("edacrt", [&] {
+        try {
+            if (app.got_subcommand("render")) run_render();
+            if (app.got_subcommand("trace")) run_trace();
+            if (app.got_subcommand("camera-rays")) run_camera_rays();
+            if (app.got_subcommand("accuracy")) run_accuracy();
+            if (app.got_subcommand("bench")) run_bench();
+            if (app.got_subcommand("info")) run_info();
+        } catch (const edacrt::cli::Interrupted& e) {
+            std::fflush(stdout);  // the report of what was written comes first
+            std::cerr << "edacrt: interrupted: " << edacrt::printable(e.what()) << "\n";
+            return edacrt::cli::kInterruptedStatus;
+        }
+        return 0;
+    });
+    if (status != 0) return status;
     // The report on stdout is output too: a full disk or closed pipe must not pass as success.
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
         std::cerr << "edacrt: error: cannot write to standard output\n";
-        return 1;
+        return edacrt::cli::kExitInputError;
     }
     return 0;
 }

@@ -4,10 +4,16 @@
 #include <iostream>
 #include <string>
 
+#include "util/error.h"
+#include "util/printable.h"
+
 namespace edacrt::cli {
 
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
     app.set_version_flag("--version", app.get_name() + " " + EDACRT_VERSION);
+    app.footer(
+        "Exit status: 0 success, 1 bad input or a file that cannot be read or written, 2 usage "
+        "error, 70 internal error (a bug), 130 interrupted (Ctrl-C).");
     try {
         app.parse(argc, argv);
         return std::nullopt;
@@ -27,8 +33,23 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
         std::replace(what.begin(), what.end(), '\n', ' ');
         std::cerr << app.get_name() << ": error: " << what << "\nrun '" << command
                   << " --help' for the options\n";
-        return 2;
+        return kExitUsageError;
     }
+}
+
+int run_reporting_errors(const std::string& tool, const std::function<int()>& work) {
+    try {
+        return work();
+    } catch (const InputError& e) {
+        // Messages quote names from files: escaped, as everything printed from a file is.
+        std::cerr << tool << ": error: " << printable(e.what()) << "\n";
+    } catch (const std::bad_alloc&) {
+        std::cerr << tool << ": error: out of memory\n";
+    } catch (const std::exception& e) {
+        std::cerr << tool << ": internal error: " << printable(e.what()) << "\n";
+        return kExitInternalError;
+    }
+    return kExitInputError;
 }
 
 }  // namespace edacrt::cli

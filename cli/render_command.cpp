@@ -14,6 +14,7 @@
 #include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "interrupt.h"
 #include "progress.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
@@ -58,12 +59,30 @@ std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
     return reference + std::max(image, stats);
 }
 
-void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
-                  ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
-                  AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
-                  const Camera& camera);
+int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
+                 ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
+                 AnimatedScene& animated, Tracer& tracer, Renderer& renderer, const Camera& camera);
+
+/// What an interrupted render wrote: `spp` samples per pixel of `frames[index]` (0: nothing),
+/// and the frames after it not rendered.
+std::string interrupted_report(const RenderOptions& o, const std::vector<FrameJob>& frames,
+                               std::size_t index, int spp) {
+    const FrameJob& frame = frames[index];
+    std::string report = frames.size() > 1 ? "frame " + std::to_string(frame.index) + ": " : "";
+    if (spp == 0)
+        report += "no pass completed, nothing written";
+    else
+        report += "wrote " + frame.out + " with " + std::to_string(spp) +
+                  (o.time_budget_only() ? "" : " of " + std::to_string(o.spp)) +
+                  " samples per pixel";
+    if (const std::size_t left = frames.size() - index - 1)
+        report +=
+            "; " + std::to_string(left) + " later frame" + (left > 1 ? "s" : "") + " not rendered";
+    return report;
+}
 
 void run(RenderOptions o) {
+    catch_interrupts();  // until the render starts, Ctrl-C exits at once
     take_animation_file(o.common.scene, o.animation);
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
@@ -103,17 +122,22 @@ void run(RenderOptions o) {
     const Camera camera = choose_camera(animated.scene, o.camera);
     Renderer renderer(animated.scene, *tracer, camera, settings);
     for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";
-    for (const FrameJob& frame : frames)
-        render_frame(o, frame, settings, tone, exr_pixel, reference, animated, *tracer, renderer,
-                     camera);
+    // Ctrl-C from here stops at the next batch and keeps the passes completed.
+    keep_work_on_interrupt();
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const int spp = render_frame(o, frames[i], settings, tone, exr_pixel, reference, animated,
+                                     *tracer, renderer, camera);
+        if (interrupted()) throw Interrupted(interrupted_report(o, frames, i, spp));
+    }
 }
 
 /// Renders one image of `frame` with `renderer`: the animation's geometry at the frame's time,
 /// taken by the tracer as --update says, then the passes, the image and the statistics.
-void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
-                  ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
-                  AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
-                  const Camera& camera) {
+/// Returns the samples per pixel written: fewer when interrupted (none: nothing written).
+int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
+                 ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
+                 AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
+                 const Camera& camera) {
     const Scene& scene = animated.scene;
     if (animated.animation) animated.animation->frame(frame.time, animated.scene);
     const SceneUpdate how = parse_scene_update(o.animation.update);
@@ -132,7 +156,8 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
     Progress progress(progress_style(o.common.quiet), "render", Progress::Unit::samples);
     const std::string of_spp = o.time_budget_only() ? "" : "/" + std::to_string(spp);
     progress.begin("first pass");
-    while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget)) {
+    while (renderer.film().passes() < spp && (o.time_budget == 0.0 || elapsed < o.time_budget) &&
+           !interrupted()) {
         start = std::chrono::steady_clock::now();
         const double t =
             shutter_time(frame.time, o.animation.shutter, std::uint32_t(renderer.film().passes()));
@@ -142,8 +167,11 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
             renderer.scene_changed(scene, true);
             scene_time = t;
         }
-        renderer.render_pass(nullptr, nullptr,
-                             std::min(settings.samples_per_pass, spp - renderer.film().passes()));
+        // An interrupted pass leaves the film as the last complete pass left it.
+        if (!renderer.render_pass(
+                &interrupted(), nullptr,
+                std::min(settings.samples_per_pass, spp - renderer.film().passes())))
+            break;
         elapsed += seconds_since(start);
         const int done = renderer.film().passes();
         const double fraction =
@@ -172,6 +200,7 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
     }
     progress.finish();
     const double render_seconds = elapsed;
+    if (renderer.film().passes() == 0) return 0;  // interrupted before the first pass ended
 
     // A temporary only: the image is gone before the statistics trace below.
     save_image(
@@ -223,15 +252,20 @@ void render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSet
         stats["animation"] = animated.animation->spec();
         stats["time"] = frame.time;
     }
-    if (!o.common.stats_path.empty()) {
-        const std::vector<Ray> rays =
-            PinholeProjection(camera, settings.width, settings.height).pixel_centre_rays();
-        std::vector<Hit> hits(rays.size());
-        tracer.trace(rays, hits, Query::closest, &detail);
+    if (interrupted()) {
+        stats["interrupted"] = true;  // the user is waiting: no extra trace for the detail
+    } else {
+        if (!o.common.stats_path.empty()) {
+            const std::vector<Ray> rays =
+                PinholeProjection(camera, settings.width, settings.height).pixel_centre_rays();
+            std::vector<Hit> hits(rays.size());
+            tracer.trace(rays, hits, Query::closest, &detail);
+        }
+        stats["detail"] = to_json(detail);
+        stats["detail"]["from"] = "an extra, untimed trace of one camera ray per pixel centre";
     }
-    stats["detail"] = to_json(detail);
-    stats["detail"]["from"] = "an extra, untimed trace of one camera ray per pixel centre";
     write_stats(o.common, stats);
+    return renderer.film().passes();
 }
 
 }  // namespace

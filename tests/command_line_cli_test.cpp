@@ -1,11 +1,16 @@
 // How edacrt reports its command line, as other command-line tools do: --version, --help, and
-// usage errors as one "edacrt: error: ..." line with exit status 2.
+// usage errors as one "edacrt: error: ..." line with exit status 2; errors while running with
+// their own statuses (1 bad input, 70 a bug).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "cli_runner.h"
+#include "parse_command_line.h"
+#include "util/error.h"
 
 namespace edacrt {
 namespace {
@@ -43,6 +48,27 @@ TEST(CommandLineCli, UsageErrorsAreOneLineWithStatus2) {
     const auto help = test::run_cli("render --help");
     EXPECT_EQ(help.exit_code, 0);
     EXPECT_NE(help.output.find("--spp"), std::string::npos) << help.output;
+    const auto statuses = test::run_cli("--help");
+    EXPECT_NE(statuses.output.find("Exit status: 0 success, 1 bad input"), std::string::npos)
+        << statuses.output;
+    EXPECT_NE(statuses.output.find("70 internal error"), std::string::npos) << statuses.output;
+}
+
+// Both tools run their work through run_reporting_errors: a bug (an unexpected exception) is
+// told apart from bad input and from a usage error by its status.
+TEST(CommandLineCli, InternalErrorsHaveStatus70) {
+    const auto run = [](const std::function<int()>& work) {
+        testing::internal::CaptureStderr();
+        const int status = cli::run_reporting_errors("tool", work);
+        return std::pair(status, testing::internal::GetCapturedStderr());
+    };
+    EXPECT_EQ(run([] { return 0; }), std::pair(0, std::string()));
+    EXPECT_EQ(run([]() -> int { throw InputError("a.obj:3: bad \x1b[31m"); }),
+              std::pair(1, std::string("tool: error: a.obj:3: bad \\x1B[31m\n")));
+    EXPECT_EQ(run([]() -> int { throw std::bad_alloc(); }),
+              std::pair(1, std::string("tool: error: out of memory\n")));
+    EXPECT_EQ(run([]() -> int { throw std::logic_error("vector::_M_range_check"); }),
+              std::pair(70, std::string("tool: internal error: vector::_M_range_check\n")));
 }
 
 }  // namespace

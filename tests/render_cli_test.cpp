@@ -1,14 +1,19 @@
-// edacrt render: integrators, PFM output, --reference, --time-budget, bad input.
+// edacrt render: integrators, PFM output, --reference, --time-budget, bad input, Ctrl-C.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "cli_runner.h"
 #include "render/image.h"
+#include "render/image_format.h"
 #include "test_paths.h"
 
 namespace edacrt {
@@ -227,6 +232,103 @@ TEST_F(RenderCli, AFaceOfAHundredThousandCornersIsTracedByEveryMethod) {
         EXPECT_GT(pixel(24, 24).x, 0.0f) << method;
         EXPECT_EQ(pixel(0, 0).x, 0.0f) << method;
     }
+}
+
+// Ctrl-C keeps the passes completed: the image (and --stats, without the untimed detail trace)
+// is written with the samples so far and the command exits 130 saying how many.
+TEST_F(RenderCli, InterruptWritesTheSamplesSoFarAndExits130) {
+    test::BackgroundCli render(kSmall + "--spp 100000 --samples-per-pass 1 --stats " +
+                                   path("s.json") + " --out " + path("x.png"),
+                               path("output.txt"));
+    ASSERT_TRUE(render.wait_for_output("/100000 spp", std::chrono::seconds(60))) << render.output();
+    render.signal(SIGINT);
+    const auto status = render.wait(std::chrono::seconds(60));
+    ASSERT_TRUE(status) << "still running after Ctrl-C";
+    const std::string output = render.output();
+    ASSERT_TRUE(WIFEXITED(*status)) << output;
+    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    const auto stats = nlohmann::json::parse(std::ifstream(path("s.json")));
+    const int spp = stats["spp"].get<int>();
+    EXPECT_GE(spp, 1);
+    EXPECT_LT(spp, 100000);
+    EXPECT_TRUE(stats["interrupted"].get<bool>());
+    EXPECT_FALSE(stats.contains("detail"));
+    EXPECT_NE(output.find("edacrt: interrupted: wrote " + path("x.png") + " with " +
+                          std::to_string(spp) + " of 100000 samples per pixel"),
+              std::string::npos)
+        << output;
+    const Image image = load_image(path("x.png"));
+    EXPECT_EQ(image.width, 32);
+    EXPECT_EQ(image.height, 24);
+}
+
+// Interrupted before the first pass ends (the naive method on 20k triangles takes seconds a
+// batch): nothing is written, and it says so.
+TEST_F(RenderCli, InterruptBeforeTheFirstPassWritesNothing) {
+    test::BackgroundCli render(
+        "render --scene builtin:sphere:subdiv=5 --method naive --threads 1 --width 64 "
+        "--height 48 --spp 64 --stats " +
+            path("s.json") + " --out " + path("x.png"),
+        path("output.txt"));
+    ASSERT_TRUE(render.wait_for_output("loaded builtin:sphere", std::chrono::seconds(60)))
+        << render.output();
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    render.signal(SIGINT);
+    const auto status = render.wait(std::chrono::seconds(120));
+    ASSERT_TRUE(status) << "still running after Ctrl-C";
+    const std::string output = render.output();
+    ASSERT_TRUE(WIFEXITED(*status)) << output;
+    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    EXPECT_NE(output.find("edacrt: interrupted: no pass completed, nothing written"),
+              std::string::npos)
+        << output;
+    EXPECT_FALSE(std::filesystem::exists(path("x.png")));
+    EXPECT_FALSE(std::filesystem::exists(path("s.json")));
+}
+
+// A second Ctrl-C does not wait for the batch in progress (the naive method on 20k triangles:
+// about ten seconds a batch): the command exits 130 at once.
+TEST_F(RenderCli, ASecondInterruptExitsAtOnce) {
+    test::BackgroundCli render(
+        "render --scene builtin:sphere:subdiv=5 --method naive --threads 1 --width 128 "
+        "--height 96 --spp 64 --out " +
+            path("x.png"),
+        path("output.txt"));
+    ASSERT_TRUE(render.wait_for_output("loaded builtin:sphere", std::chrono::seconds(60)))
+        << render.output();
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    render.signal(SIGINT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    render.signal(SIGINT);
+    const auto status = render.wait(std::chrono::seconds(5));
+    ASSERT_TRUE(status) << "still running 5 s after the second Ctrl-C";
+    const std::string output = render.output();
+    ASSERT_TRUE(WIFEXITED(*status)) << output;
+    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    EXPECT_FALSE(std::filesystem::exists(path("x.png")));
+}
+
+// An animation stops after the frame in progress, which is written.
+TEST_F(RenderCli, InterruptStopsAnAnimationAfterTheCurrentFrame) {
+    test::BackgroundCli render(
+        "render --scene builtin:sphere:subdiv=3 --animate wave --frames 0:4 --width 32 "
+        "--height 24 --sky 1,1,1 --spp 100000 --samples-per-pass 1 --out " +
+            path("f%d.png"),
+        path("output.txt"));
+    ASSERT_TRUE(render.wait_for_output("/100000 spp", std::chrono::seconds(60))) << render.output();
+    render.signal(SIGINT);
+    const auto status = render.wait(std::chrono::seconds(60));
+    ASSERT_TRUE(status) << "still running after Ctrl-C";
+    const std::string output = render.output();
+    ASSERT_TRUE(WIFEXITED(*status)) << output;
+    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    EXPECT_NE(output.find("edacrt: interrupted: frame 0: wrote " + path("f0.png") + " with "),
+              std::string::npos)
+        << output;
+    EXPECT_NE(output.find("samples per pixel; 4 later frames not rendered"), std::string::npos)
+        << output;
+    EXPECT_EQ(load_image(path("f0.png")).width, 32);
+    EXPECT_FALSE(std::filesystem::exists(path("f1.png")));
 }
 
 }  // namespace

@@ -6,12 +6,14 @@
 #include <random>
 #include <thread>
 
+#include "bookmarks.h"
 #include "heatmap.h"
 #include "orbit_camera.h"
 #include "render_worker.h"
 #include "scene/builtin_scenes.h"
 #include "script.h"
 #include "script_runner.h"
+#include "temp_dir.h"
 #include "util/error.h"
 #include "viewer_state.h"
 
@@ -285,6 +287,34 @@ TEST(Script, FailedSavesAndRenderErrorsFailTheScript) {
                   "script line 3: the render failed: c-i (C_I) must be positive")
             << wait;
     }
+}
+
+// `bookmark NAME` saves the view as the Camera tab's "save view" does: the file read back
+// holds it; a file that cannot be written fails the script at its line.
+TEST(Script, BookmarkSavesTheViewToTheBookmarksFile) {
+    const test::TempDir dir;
+    ViewerState s;
+    s.scene_path = "builtin:cornell";
+    const Camera view{{1.0f, 2.0f, 3.0f}, {0.0f, 0.5f, 0.0f}, {0.0f, 1.0f, 0.0f}, 40.0f};
+    s.camera.reset(view);
+    s.bookmarks_path = (dir.path() / "config" / "bookmarks.json").string();
+    EXPECT_EQ(run_script(s, "frames 0\nbookmark front\n"), "");
+    Bookmarks read;
+    EXPECT_TRUE(read.load(s.bookmarks_path).empty());
+    const std::vector<Bookmark>& saved = read.of("builtin:cornell");
+    ASSERT_EQ(saved.size(), 1u);
+    EXPECT_EQ(saved[0].name, "front");
+    EXPECT_EQ(saved[0].camera, s.camera.camera());
+    EXPECT_NE(s.status.find("bookmarks saved to " + s.bookmarks_path), std::string::npos);
+
+    s.bookmarks_path = dir.path().string();  // a folder, not a file
+    EXPECT_EQ(run_script(s, "frames 0\nbookmark side\n")
+                  .rfind("script line 2: bookmarks not saved: " + dir.path().string(), 0),
+              0u);
+    s.bookmarks_path.clear();  // neither XDG_CONFIG_HOME nor HOME
+    EXPECT_EQ(run_script(s, "bookmark side\n"),
+              "script line 1: bookmarks not saved: neither XDG_CONFIG_HOME nor HOME is set");
+    EXPECT_THROW(parse_script("bookmark\n", "s"), InputError);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
 #include "render/exr_image.h"
@@ -229,6 +230,32 @@ TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
     std::filesystem::remove_all(dir);
 }
 
+// The script's `bookmark NAME` writes the --bookmarks file; a file that cannot be written
+// fails the script at its line.
+TEST(ViewerScreenshots, AScriptSavesABookmarkOrFailsAtItsLine) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const std::filesystem::path file = dir.path() / "config" / "bookmarks.json";
+    const auto saved = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
+                                         "--bookmarks " + file.string() + " builtin:cornell");
+    ASSERT_EQ(saved.exit_code, 0) << saved.output;
+    const auto json = nlohmann::json::parse(std::ifstream(file));
+    const auto& list = json["scenes"]["builtin:cornell"];
+    ASSERT_EQ(list.size(), 1u) << json.dump();
+    EXPECT_EQ(list[0]["name"], "front");
+    EXPECT_EQ(list[0]["eye"].size(), 3u);
+
+    // A bookmarks file under a regular file: its folder cannot be made.
+    const std::filesystem::path blocked = dir.write("plain", "") / "bookmarks.json";
+    const auto failed = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
+                                          "--bookmarks " + blocked.string() + " builtin:cornell");
+    EXPECT_EQ(failed.exit_code, 1) << failed.output;
+    EXPECT_NE(failed.output.find("edacrt_viewer: error: script line 2: bookmarks not saved: " +
+                                 blocked.string()),
+              std::string::npos)
+        << failed.output;
+}
+
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const auto dir = std::filesystem::temp_directory_path() /
@@ -385,6 +412,9 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
     const auto version = test::run_command(EDACRT_VIEWER " --version");
     EXPECT_EQ(version.exit_code, 0) << version.output;
     EXPECT_EQ(version.output, "edacrt_viewer 0.1\n");
+    const auto help = test::run_command(EDACRT_VIEWER " --help");
+    EXPECT_EQ(help.exit_code, 0) << help.output;
+    EXPECT_NE(help.output.find("70 internal error"), std::string::npos) << help.output;
     for (const char* args : {" --spp abc", " --bogus", " --width 10"}) {
         const auto result = test::run_command(std::string(EDACRT_VIEWER) + args);
         EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
@@ -392,6 +422,30 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
         EXPECT_NE(result.output.find("\nrun 'edacrt_viewer --help'"), std::string::npos)
             << result.output;
     }
+}
+
+// Names from files (a script's words, a scene path) reach the terminal escaped: an ESC byte
+// in them cannot send escape codes.
+TEST(ViewerCommandLine, ErrorsQuotingFilesAreEscaped) {
+    const test::TempDir dir;
+    const std::string esc = "\x1b[2J";
+    const auto expect_escaped = [](const test::CliResult& result, const std::string& message) {
+        EXPECT_EQ(result.exit_code, 1) << result.output;
+        EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
+        EXPECT_EQ(result.output.find('\x1b'), std::string::npos) << result.output;
+    };
+    // Both refused before any window opens.
+    const std::filesystem::path script = dir.write("parse.txt", "frames 1\nfly" + esc + "away\n");
+    expect_escaped(test::run_command(EDACRT_VIEWER " --script " + script.string()),
+                   "edacrt_viewer: error: " + script.string() +
+                       ":2: unknown script command 'fly\\x1B[2Jaway'");
+    const std::string scene = (dir.path() / ("no" + esc + "scene.obj")).string();
+    expect_escaped(test::run_command(EDACRT_VIEWER " '" + scene + "'"), "no\\x1B[2Jscene.obj");
+    // A script line that fails while the viewer runs.
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    expect_escaped(run_viewer_script(dir.path(), "frames 1\nset method " + esc + "x\nquit\n", 1280,
+                                     800, "builtin:cornell"),
+                   "edacrt_viewer: error: script line 2: ");
 }
 
 }  // namespace

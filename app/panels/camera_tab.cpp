@@ -7,25 +7,20 @@
 #include <iostream>
 
 #include "panels.h"
+#include "util/printable.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
 
-void save_bookmarks(ViewerState& s) {
-    if (s.bookmarks_path.empty()) {
-        s.status = "bookmarks not saved: neither XDG_CONFIG_HOME nor HOME is set";
-        return;
-    }
+/// Runs a bookmark change that writes the file; a failure goes to the status line and stderr.
+template <typename F>
+void change_bookmarks(ViewerState& s, F&& change) {
     try {
-        const std::string backup = s.bookmarks.save(s.bookmarks_path);
-        s.status = "bookmarks saved to " + s.bookmarks_path;
-        if (!backup.empty()) {
-            s.status += "; the damaged file before it is kept as " + backup;
-            std::cerr << "edacrt_viewer: " << s.status << "\n";
-        }
+        change();
     } catch (const std::exception& e) {
-        s.status = std::string("bookmarks not saved: ") + e.what();
-        std::cerr << "edacrt_viewer: error: " << s.status << "\n";
+        s.status = e.what();
+        std::cerr << "edacrt_viewer: error: " << printable(s.status) << "\n";
     }
 }
 
@@ -69,10 +64,8 @@ void draw_camera_tab(ViewerState& s) {
                             ImGui::GetStyle().ItemSpacing.x);
     ImGui::InputTextWithHint("##bookmark", "name", &s.bookmark_name);
     ImGui::SameLine();
-    if (ImGui::Button("save view") && !s.bookmark_name.empty()) {
-        s.bookmarks.put(s.scene_path, {s.bookmark_name, s.camera.camera()});
-        save_bookmarks(s);
-    }
+    if (ImGui::Button("save view") && !s.bookmark_name.empty())
+        change_bookmarks(s, [&] { save_bookmark(s, s.bookmark_name); });
     std::string remove;
     for (const Bookmark& b : s.bookmarks.of(s.scene_path)) {
         ImGui::PushID(b.name.c_str());
@@ -83,10 +76,7 @@ void draw_camera_tab(ViewerState& s) {
         ImGui::TextUnformatted(b.name.c_str());
         ImGui::PopID();
     }
-    if (!remove.empty()) {
-        s.bookmarks.remove(s.scene_path, remove);
-        save_bookmarks(s);
-    }
+    if (!remove.empty()) change_bookmarks(s, [&] { remove_bookmark(s, remove); });
     if (!s.bookmarks_path.empty()) ImGui::TextDisabled("in %s", s.bookmarks_path.c_str());
 }
 

@@ -156,15 +156,15 @@ bool decode_soup(Decoder& in, Scene& scene) {
     return true;
 }
 
-/// One polygon of up to ~100k corners, triangulated as the OBJ loader does (a fan (0, i, i + 1)):
-/// thousands of slivers sharing a vertex, which made the recursion go one level deeper per few
-/// triangles until the stack overflowed.
 /// Bounds that keep one fan's run within a few seconds under the sanitizers (8 rays at the
 /// shared vertex of 20k corners: 2-4 s on a loaded machine). 1000 corners already reach the
 /// recursion's depth bound.
 constexpr std::size_t kMaxFanCorners = 20'000;
 constexpr int kMaxFanRays = 8;
 
+/// One polygon triangulated as the OBJ loader does a face, a fan (0, i, i + 1): thousands of
+/// slivers sharing a vertex, which made the recursion go one level deeper per few triangles
+/// until the stack overflowed (faces of 100k+ corners).
 struct Fan {
     std::size_t corners;
     std::uint8_t shape;  // bits 0-1 apex, 2-3 arc, 4-5 height profile, 6 squash, 7 reverse
@@ -262,20 +262,11 @@ void make_far(Decoder& in, const Scene& scene, Ray& ray) {
     float u = in.barycentric(), v = in.barycentric();
     const std::uint8_t nudge = in.byte();
     const float step = std::ldexp(1.0f, -int(nudge % 32));
-    switch (nudge >> 5 & 3) {
-        case 0:
-            u -= step;
-            break;  // past the edge u = 0 when on it
-        case 1:
-            v -= step;
-            break;
-        case 2:
-            u += step, v += step;
-            break;  // past the edge u + v = 1
-        case 3:
-            u += 0.5f * step;
-            break;  // inside, near a vertex or edge
-    }
+    // Past the edge u = 0 or v = 0 (when on it), past u + v = 1, or inside near a vertex or edge.
+    if ((nudge >> 5 & 3) == 0) u -= step;
+    if ((nudge >> 5 & 3) == 1) v -= step;
+    if ((nudge >> 5 & 3) == 2) u += step, v += step;
+    if ((nudge >> 5 & 3) == 3) u += 0.5f * step;
     const glm::dvec3 target(surface_point(tri, u, v).p);
     const std::uint8_t distance = in.byte();
     const glm::dvec3 p[3] = {glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
@@ -431,12 +422,14 @@ void print_case(const Case& c, std::initializer_list<std::int32_t> prims = {}) {
     __builtin_trap();
 }
 
-/// Whether the ray's line certainly passes outside triangle `prim`: two edge functions (Pluecker
-/// products of the corners relative to the origin, in double from the float inputs) have
-/// opposite signs beyond a generous bound on their rounding (2^-36 of the products of
-/// magnitudes; double rounds at 2^-53). Independent of the kernels: every method, naive too,
-/// once reported far rays' hits 60 units beside a unit triangle. In double, products of three
-/// floats neither overflow nor lose digits to denormals.
+/// Whether the ray's line certainly passes outside triangle `prim`: two edge functions have
+/// opposite signs beyond their bounds. An edge function is the Pluecker product
+/// d . ((p - o) x (q - p)), in double from the float inputs, so the large difference from the
+/// origin meets only the edge, not another large difference (d . ((p - o) x (q - o)) would
+/// cancel for a small triangle far away). Its bound lets the line pass 2^-20 of the largest
+/// coordinate outside the edge (the kernel's float rounding, then some) and covers double's
+/// rounding of the differences. Independent of the kernels: every method, naive too, once
+/// reported far rays' hits 60 units beside a unit triangle.
 bool certainly_outside(const Scene& scene, const Ray& ray, std::int32_t prim) {
     const Triangle tri = scene.corners(std::size_t(prim));
     const glm::dvec3 org(ray.org), dir(ray.dir);
@@ -444,10 +437,13 @@ bool certainly_outside(const Scene& scene, const Ray& ray, std::int32_t prim) {
     bool positive = false, negative = false;
     for (int k = 0; k < 3; ++k) {
         const glm::dvec3 &p = corners[k], &q = corners[(k + 1) % 3];
-        const double e = glm::dot(dir, glm::cross(p - org, q - org));
-        // The differences round relative to the corner and the origin, not to the difference.
+        const glm::dvec3 edge = q - p;
+        const double e = glm::dot(dir, glm::cross(p - org, edge));
+        const double scale = std::max({max_abs(p), max_abs(q), max_abs(org)});
+        const double from_origin = max_abs(p) + max_abs(org), edge_size = max_abs(edge);
         const double bound =
-            0x1p-36 * max_abs(dir) * (max_abs(p) + max_abs(org)) * (max_abs(q) + max_abs(org));
+            max_abs(dir) * (0x1p-20 * scale * edge_size +
+                            0x1p-48 * from_origin * (edge_size + max_abs(p) + max_abs(q)));
         positive |= e > bound;
         negative |= e < -bound;
     }

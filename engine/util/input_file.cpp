@@ -42,11 +42,11 @@ int open_checked(const std::filesystem::path& path, std::string_view what, std::
         throw InputError(path.string() + ": cannot read " + std::string(what) + " (" +
                          std::strerror(errno) + ")");
     if (!S_ISREG(status.st_mode))
-        throw InputError(path.string() + ": the " + std::string(what) + " is not a regular file (" +
+        throw InputError(path.string() + ": not a regular file (" +
                          (S_ISDIR(status.st_mode)    ? "a directory"
                           : S_ISFIFO(status.st_mode) ? "a FIFO"
                                                      : "a device or socket") +
-                         ")");
+                         "); the " + std::string(what) + " must be a file");
     size = std::uint64_t(status.st_size);
     if (size > max_bytes) throw InputError(too_large(path, what, std::to_string(size), max_bytes));
     return std::exchange(guard.fd, -1);

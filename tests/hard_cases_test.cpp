@@ -573,6 +573,23 @@ TEST(HardCases, ShortDirectionsGiveTheSameHitsAsUnitOnes) {
         }
 }
 
+TEST(HardCases, OriginsTwoToTheFiftyThreeAwayGetNoFalseHits) {
+    // Found by the trace fuzzer: from 2^53 away the corners' differences from the origin are
+    // exact in double but the double shear (6.75 + 1.5e16) is not, and naive hit a unit
+    // triangle where the line passes 1.5e16 beside it. The line along (-1, -1, -1) from
+    // (x, y, z) meets the plane x = 0 at (y - x, z - x): far outside the triangle.
+    const Scene scene = make_scene({{0, 0, -2}, {0, 2, -2}, {0, 1, -1}}, {{0, 1, 2}});
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Ray> rays = {{{0x1.b4b5fep+53f, -4.75f, -4.75f}, {-1, -1, -1}}};
+    while (rays.size() < 4000) {
+        const double x = std::ldexp(1.0 + unit(rng), 50 + int(rng() % 8));
+        rays.push_back({glm::vec3(float(x), float(16 * unit(rng) - 8), float(16 * unit(rng) - 8)),
+                        {-1, -1, -1}});
+    }
+    expect_reference_hits(scene, rays, "origins 2^50 to 2^58 away", false);
+}
+
 TEST(HardCases, HugeAndTinyObjectsInOneScene) {
     // A 1e-3 sphere beside a 1e4 one, 1e5 apart, then the mix moved 1e3 from the origin (the
     // float spacing there, 6e-5, still resolves the small sphere).

@@ -1,6 +1,7 @@
 // Reads with a bound: a FIFO, a device or a directory is refused without blocking, a file over
 // its cap is refused with its size, deep JSON is refused before it can overflow the stack,
-// and a message quotes a bad value only in part.
+// and a message quotes a bad value only in part, escaped. (Every reader against such files:
+// special_files_test.cpp.)
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
@@ -8,7 +9,6 @@
 #include <filesystem>
 #include <string>
 
-#include "render/image_format.h"
 #include "scene/rigid_animation.h"
 #include "temp_dir.h"
 #include "util/error.h"
@@ -125,16 +125,29 @@ TEST(JsonLimits, AnAnimationErrorQuotesALongValueInPart) {
     EXPECT_LT(syntax.size(), 600u) << syntax.substr(0, 400);
 }
 
-TEST(InputFile, AnimationFilesAndImagesMustBeRegularFiles) {
+TEST(JsonLimits, MessagesQuoteNamesAndValuesEscaped) {
+    // Found by animation_fuzzer: a field or mesh name holds any character ("\u0001" in the
+    // file), and nlohmann's dump() and parse errors escape controls only below 0x20.
     const TempDir dir;
-    const fs::path fifo = make_fifo(dir, "fifo.anim.json");
-    EXPECT_NE(error_of([&] { load_rigid_animation(fifo); }).find("a FIFO"), std::string::npos);
-    EXPECT_NE(error_of([&] { load_rigid_animation(dir.path()); }).find("a directory"),
-              std::string::npos);
-    for (const std::string ext : {"png", "hdr", "pfm", "exr"}) {
-        const fs::path image = make_fifo(dir, "fifo." + ext);
-        EXPECT_NE(error_of([&] { load_image(image); }).find("a FIFO"), std::string::npos) << ext;
-    }
+    const auto message = [&](const std::string& text) {
+        return error_of([&] { load_rigid_animation(dir.write("a.anim.json", text)); });
+    };
+    const auto printable = [](const std::string& text) {
+        for (const char c : text)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
+        return true;
+    };
+    const std::string field = message(R"({"objects": [], "x\u0001\u001b[2J": 1})");
+    EXPECT_NE(field.find("unknown field 'x\\x01\\x1B[2J'"), std::string::npos) << field;
+    const std::string mesh = message(R"({"objects": [{"mesh": "a\u0007.obj"}]})");
+    EXPECT_NE(mesh.find("a\\x07.obj"), std::string::npos) << mesh;
+    const std::string value = message(
+        "{\"objects\": [{\"mesh\": \"builtin:cube\", \"keys\": "
+        "[{\"time\": \"\x7f\xc2\x85\"}]}]}");
+    EXPECT_NE(value.find("expected a number, got \"\\x7F\\xC2\\x85\""), std::string::npos) << value;
+    const std::string syntax = message("{\"objects\": \x7f}");
+    EXPECT_NE(syntax.find("not valid JSON"), std::string::npos) << syntax;
+    for (const std::string& m : {field, mesh, value, syntax}) EXPECT_TRUE(printable(m)) << m;
 }
 
 }  // namespace

@@ -265,59 +265,5 @@ TEST(BoxIntersection, ConservativeForRaysThatHitTriangles) {
     EXPECT_GT(hits, 1000);
 }
 
-/// The definition: the differences the double-precision path takes (each corner minus the
-/// origin, the edges from p0), rounded to double and back, exact.
-bool all_differences_exact(const glm::vec3& org, const Triangle& tri) {
-    const auto exact = [](float a, float b) {
-        const double d = double(a) - double(b);
-        return d + double(b) == double(a) && double(a) - d == double(b);
-    };
-    for (int axis = 0; axis < 3; ++axis) {
-        const float o = org[axis], p0 = tri.p0[axis], p1 = tri.p1[axis], p2 = tri.p2[axis];
-        if (!exact(p0, o) || !exact(p1, o) || !exact(p2, o) || !exact(p1, p0) || !exact(p2, p0))
-            return false;
-    }
-    return true;
-}
-
-TEST(DifferencesExact, AgreesWithTheDefinitionAcrossMagnitudes) {
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> mantissa(1.0f, 2.0f);
-    int base = 0;  // per round: most values lie within 2^30 of 2^base, some beyond
-    const auto value = [&]() -> float {
-        switch (rng() % 16) {
-            case 0:
-                return 0.0f;
-            case 1:
-                return -0.0f;
-            case 2:
-                return std::numeric_limits<float>::denorm_min() * float(rng() % 1000);
-            case 3:
-                return rng() % 2 ? kInfinity : std::numeric_limits<float>::quiet_NaN();
-            case 4:
-                return std::ldexp(mantissa(rng), int(rng() % 250) - 125);
-            default:
-                return (rng() % 2 ? -1.0f : 1.0f) *
-                       std::ldexp(mantissa(rng), base + int(rng() % 61) - 30);
-        }
-    };
-    int exact = 0, inexact = 0;
-    for (int round = 0; round < 200000; ++round) {
-        base = int(rng() % 200) - 100;
-        const glm::vec3 org{value(), value(), value()};
-        const Triangle tri{
-            {value(), value(), value()}, {value(), value(), value()}, {value(), value(), value()}};
-        const bool expected = all_differences_exact(org, tri);
-        ASSERT_EQ(differences_exact(org, tri), expected)
-            << "round " << round << std::hexfloat << " org " << org.x << " " << org.y << " "
-            << org.z << " p0 " << tri.p0.x << " " << tri.p0.y << " " << tri.p0.z << " p1 "
-            << tri.p1.x << " " << tri.p1.y << " " << tri.p1.z << " p2 " << tri.p2.x << " "
-            << tri.p2.y << " " << tri.p2.z;
-        (expected ? exact : inexact)++;
-    }
-    EXPECT_GT(exact, 1000);
-    EXPECT_GT(inexact, 1000);
-}
-
 }  // namespace
 }  // namespace edacrt

@@ -118,7 +118,7 @@ TEST(ViewerFiles, AScriptMustBeARegularFile) {
     const TempDir dir;
     const fs::path fifo = dir.path() / "script.txt";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    for (const fs::path& path : {fifo, dir.path(), fs::path("/dev/zero")}) {
+    for (const fs::path& path : {fifo, dir.path(), fs::path("/dev/zero"), fs::path("/dev/null")}) {
         try {
             load_script(path.string());
             ADD_FAILURE() << path;

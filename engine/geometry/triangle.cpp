@@ -3,29 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <iterator>
 #include <limits>
 
 namespace edacrt {
 namespace {
-
-/// Whether a - b of two floats is exact in double (its significant bits fit in 53).
-bool exact_difference(float a, float b) {
-    const double difference = double(a) - double(b);
-    return difference + double(b) == double(a) && double(a) - difference == double(b);
-}
-
-/// Whether the differences of finite floats of magnitude at most m that are zero or at least
-/// m 2^-26 are all exact in double: all such values are multiples of 2^(e - 49), e the
-/// exponent of m (their ulps), and any difference is below 2^(e + 2), so it takes at most 51
-/// significant bits.
-bool close_in_magnitude(const double (&x)[4]) {
-    double m = 0.0;
-    for (const double v : x) m = std::max(m, std::abs(v));
-    if (!(m < std::numeric_limits<double>::infinity())) return false;
-    return std::all_of(std::begin(x), std::end(x),
-                       [&](double v) { return v == 0.0 || std::abs(v) >= m * 0x1p-26; });
-}
 
 /// The unnormalised normal in double. The corners are floats, so their differences are exact
 /// in double, the products of two differences are exact, and each component is rounded once:
@@ -37,7 +18,7 @@ glm::dvec3 normal_in_double(const Triangle& tri) {
 
 /// The distance half of refine_hit_in_double: the plane's t in double, or false when the ray
 /// is parallel to the plane, t is outside [tmin, tmax], not finite as a float or within its
-/// rounding error of the origin, or (for extreme coordinates) off the triangle's box.
+/// rounding error of the origin, or off the triangle's box.
 bool refine_distance(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                      double& t_out) {
     // t from the plane, t = n.(p0 - o) / n.d, with n exact to one rounding (normal_in_double).
@@ -59,26 +40,23 @@ bool refine_distance(const WatertightRay& r, const Triangle& tri, float tmin, fl
     // Against tmin and tmax in double: the float t may round onto them.
     const float t_float = float(t);
     if (!(t >= double(tmin) && t <= double(tmax) && t_float < kInfinity && t > error)) return false;
-    // Corners and an origin too far apart in magnitude (beyond 2^29) have inexact differences
-    // even in double, and then the inside test may pass anywhere on the plane (found by the
-    // fuzzer: a 1:1e29 triangle, an origin at 1e28). Such a hit must at least lie in the
-    // triangle's box, up to its error.
-    if (!differences_exact(r.org, tri)) {
-        const glm::dvec3 point = glm::dvec3(r.org) + t * d;
-        const glm::dvec3 lo =
-            glm::min(glm::dvec3(tri.p0), glm::min(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
-        const glm::dvec3 hi =
-            glm::max(glm::dvec3(tri.p0), glm::max(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
-        // Per axis: the distance's error, and the float inside test's resolution (2^-20 of the
-        // coordinates), by which a ray may be given a triangle it passes just beside.
-        const glm::dvec3 o(r.org);
-        const glm::dvec3 reach =
-            error * glm::abs(d) +
-            0x1p-20 * glm::max(glm::abs(o), glm::max(glm::abs(lo), glm::abs(hi)));
-        if (glm::any(glm::lessThan(point, lo - reach)) ||
-            glm::any(glm::greaterThan(point, hi + reach)))
-            return false;
-    }
+    // The double path is exact only to its own rounding: corners and an origin too far apart
+    // in magnitude (beyond 2^29) have inexact differences, and an origin 2^53 away rounds the
+    // double shear (6.75 + 1.5e16), so the inside test may pass anywhere on the plane (found by
+    // the fuzzer: a 1:1e29 triangle, an origin at 1e28; a unit triangle hit at y = -1.5e16 from
+    // 2^53 away). A hit must at least lie in the triangle's box, up to its error.
+    const glm::dvec3 point = glm::dvec3(r.org) + t * d;
+    const glm::dvec3 lo =
+        glm::min(glm::dvec3(tri.p0), glm::min(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
+    const glm::dvec3 hi =
+        glm::max(glm::dvec3(tri.p0), glm::max(glm::dvec3(tri.p1), glm::dvec3(tri.p2)));
+    // Per axis: the distance's error, and the float inside test's resolution (2^-20 of the
+    // coordinates), by which a ray may be given a triangle it passes just beside.
+    const glm::dvec3 o(r.org);
+    const glm::dvec3 reach =
+        error * glm::abs(d) + 0x1p-20 * glm::max(glm::abs(o), glm::max(glm::abs(lo), glm::abs(hi)));
+    if (glm::any(glm::lessThan(point, lo - reach)) || glm::any(glm::greaterThan(point, hi + reach)))
+        return false;
     t_out = t;
     return true;
 }
@@ -93,20 +71,6 @@ bool sheared_hit(const ShearedTriangle<double>& s, double t, TriangleHit& out) {
 }
 
 }  // namespace
-
-bool differences_exact(const glm::vec3& org, const Triangle& tri) {
-    for (int axis = 0; axis < 3; ++axis) {
-        const double x[4] = {org[axis], tri.p0[axis], tri.p1[axis], tri.p2[axis]};
-        if (close_in_magnitude(x)) continue;  // the usual case, without the five checks
-        if (!exact_difference(tri.p0[axis], org[axis]) ||
-            !exact_difference(tri.p1[axis], org[axis]) ||
-            !exact_difference(tri.p2[axis], org[axis]) ||
-            !exact_difference(tri.p1[axis], tri.p0[axis]) ||
-            !exact_difference(tri.p2[axis], tri.p0[axis]))
-            return false;
-    }
-    return true;
-}
 
 ShearedTriangle<double> shear_triangle_in_double(const WatertightRay& r, const Triangle& tri) {
     const glm::dvec3 org(r.org);

@@ -190,11 +190,6 @@ inline constexpr float kTrustedDistanceError = 0x1p-17f;
 bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmin, float tmax,
                           TriangleHit& out);
 
-/// Whether the differences of the corners from the origin and from each other are exact in
-/// double (coordinates within about 2^29 of each other in magnitude, per axis); when they are
-/// not, refine_hit_in_double also requires the hit to lie in the triangle's box.
-bool differences_exact(const glm::vec3& org, const Triangle& tri);
-
 /// The inside test when some edge function is uncertain in float (edge_uncertain: within its
 /// error bound, denormal or overflowing): those edges are recomputed in double from the inputs
 /// (an exact zero there still counts as on the edge, as in Woop et al.), the others keep their

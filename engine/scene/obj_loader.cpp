@@ -45,7 +45,8 @@ std::optional<std::string> read_file(const fs::path& path, std::string& why) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (!fs::exists(status)) {
-        why = "no such file";
+        // Not found, or a stat error such as a symlink loop's (ELOOP).
+        why = status.type() == fs::file_type::none && ec ? ec.message() : "no such file";
         return std::nullopt;
     }
     if (!fs::is_regular_file(status)) {  // an ifstream would "open" a directory

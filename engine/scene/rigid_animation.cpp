@@ -17,6 +17,7 @@
 #include "util/error.h"
 #include "util/input_file.h"
 #include "util/json_limits.h"
+#include "util/printable.h"
 
 namespace edacrt {
 namespace {
@@ -64,7 +65,8 @@ struct Reader {
                 continue;
             std::string list;
             for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-            fail(where, "unknown field '" + shorten(name) + "' (known: " + list + ")");
+            // A name may hold any character ("\u001b" in the file).
+            fail(where, "unknown field '" + printable(name, 80) + "' (known: " + list + ")");
         }
     }
 
@@ -266,7 +268,8 @@ AnimatedScene load_rigid_animation(const std::filesystem::path& path) {
             part = mesh.starts_with("builtin:") ? load_scene(mesh)
                                                 : load_obj(path.parent_path() / mesh);
         } catch (const InputError& e) {
-            reader.fail(where + ".mesh", shorten(e.what(), 600));  // it may quote a long name
+            // It quotes the mesh's name, which may be long or hold control characters.
+            reader.fail(where + ".mesh", printable(e.what(), 600));
         }
         object.vertices = part.positions.size();
         object.normals = part.normals.size();

@@ -21,6 +21,9 @@ std::vector<Record> read_records(const std::filesystem::path& path, const char* 
     // and a device such as /dev/zero reports 0 bytes.
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    // A stat error other than "not found" (a symlink loop) says more than the open would.
+    if (status.type() == std::filesystem::file_type::none && ec)
+        throw InputError(path.string() + ": cannot open " + what + " file (" + ec.message() + ")");
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
         throw InputError(path.string() + ": not a regular file (a " + what +
                          " file must be a file of known size)");

@@ -46,7 +46,7 @@ int open_checked(const std::filesystem::path& path, std::string_view what, std::
                          (S_ISDIR(status.st_mode)    ? "a directory"
                           : S_ISFIFO(status.st_mode) ? "a FIFO"
                                                      : "a device or socket") +
-                         "); a " + std::string(what) + " must be a file");
+                         "); the " + std::string(what) + " must be a file");
     size = std::uint64_t(status.st_size);
     if (size > max_bytes) throw InputError(too_large(path, what, std::to_string(size), max_bytes));
     return std::exchange(guard.fd, -1);

@@ -1,6 +1,7 @@
 #include "util/json_limits.h"
 
 #include "util/error.h"
+#include "util/printable.h"
 
 namespace edacrt {
 
@@ -41,8 +42,9 @@ std::string shorten(std::string_view text, std::size_t max_length) {
 
 std::string json_excerpt(const nlohmann::json& value, std::size_t max_length) {
     // The replace handler: a string of invalid UTF-8 must not throw while a message is made.
-    return shorten(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                   max_length);
+    // dump() escapes only controls below 0x20: DEL and U+0080..U+009F are escaped here.
+    return printable(value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                     max_length);
 }
 
 nlohmann::json parse_json(std::string_view text, const std::string& source) {
@@ -50,8 +52,9 @@ nlohmann::json parse_json(std::string_view text, const std::string& source) {
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {  // out_of_range too: a number such as 1e999
-        // The error quotes the token it stopped in, which may be a whole long string.
-        throw InputError(source + ": not valid JSON: " + shorten(e.what(), 240));
+        // The error quotes the token it stopped in, which may be a whole long string, with its
+        // DEL and invalid UTF-8 bytes as they are.
+        throw InputError(source + ": not valid JSON: " + printable(e.what(), 240));
     }
 }
 

@@ -19,11 +19,11 @@ void check_json_depth(std::string_view text, const std::string& source,
 /// `text` cut to `max_length` bytes with "..." when longer.
 std::string shorten(std::string_view text, std::size_t max_length = 80);
 
-/// A value as compact JSON for a message, shorten()ed.
+/// A value as compact JSON for a message, printable() and cut to `max_length`.
 std::string json_excerpt(const nlohmann::json& value, std::size_t max_length = 80);
 
 /// check_json_depth(), then nlohmann's parser; a parse error becomes an InputError naming
-/// `source`, its excerpt of the text shortened.
+/// `source`, its excerpt of the text printable() and cut.
 nlohmann::json parse_json(std::string_view text, const std::string& source);
 
 }  // namespace edacrt

@@ -29,19 +29,10 @@ constexpr std::uint64_t kMaxBookmarksBytes = 16u << 20;
 std::string without_trailing_commas(std::string_view text) {
     std::string out;
     out.reserve(text.size());
-    bool in_string = false, escaped = false;
+    JsonStrings strings;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
-        if (in_string) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                in_string = false;
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == ',') {
+        if (strings.outside(c) && c == ',') {
             const std::size_t next = text.find_first_not_of(" \t\r\n", i + 1);
             if (next != std::string_view::npos && (text[next] == ']' || text[next] == '}'))
                 continue;

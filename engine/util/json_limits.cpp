@@ -7,7 +7,7 @@ namespace edacrt {
 
 void check_json_depth(std::string_view text, const std::string& source, int max_depth) {
     int depth = 0;
-    bool in_string = false, escaped = false;
+    JsonStrings strings;
     std::size_t line = 1, line_start = 0;
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
@@ -15,16 +15,8 @@ void check_json_depth(std::string_view text, const std::string& source, int max_
             ++line;
             line_start = i + 1;
         }
-        if (in_string) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                in_string = false;
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
+        if (!strings.outside(c)) continue;
+        if (c == '[' || c == '{') {
             if (++depth > max_depth)
                 throw InputError(source + ":" + std::to_string(line) + ":" +
                                  std::to_string(i - line_start + 1) + ": JSON nested deeper than " +

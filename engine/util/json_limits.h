@@ -11,6 +11,28 @@ namespace edacrt {
 
 constexpr int kMaxJsonDepth = 64;
 
+/// Follows a JSON text one character at a time to tell its structure from string contents.
+class JsonStrings {
+  public:
+    /// Steps over `c`; true when it is structure (outside every string, not a quote).
+    bool outside(char c) {
+        if (in_string_) {
+            if (escaped_)
+                escaped_ = false;
+            else if (c == '\\')
+                escaped_ = true;
+            else if (c == '"')
+                in_string_ = false;
+            return false;
+        }
+        in_string_ = c == '"';
+        return !in_string_;
+    }
+
+  private:
+    bool in_string_ = false, escaped_ = false;
+};
+
 /// Throws InputError ("SOURCE:LINE:COLUMN: ...") when arrays and objects in `text` nest deeper
 /// than `max_depth`. Brackets inside strings do not count.
 void check_json_depth(std::string_view text, const std::string& source,

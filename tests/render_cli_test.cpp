@@ -234,6 +234,18 @@ TEST_F(RenderCli, AFaceOfAHundredThousandCornersIsTracedByEveryMethod) {
     }
 }
 
+/// Waits up to `limit` for an interrupted render and checks that it exited with status 130;
+/// returns its output.
+std::string expect_interrupted_exit(test::BackgroundCli& render, std::chrono::seconds limit) {
+    const auto status = render.wait(limit);
+    const std::string output = render.output();
+    EXPECT_TRUE(status) << "still running " << limit.count() << " s after Ctrl-C";
+    if (!status) return output;
+    EXPECT_TRUE(WIFEXITED(*status)) << output;
+    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    return output;
+}
+
 // Ctrl-C keeps the passes completed: the image (and --stats, without the untimed detail trace)
 // is written with the samples so far and the command exits 130 saying how many.
 TEST_F(RenderCli, InterruptWritesTheSamplesSoFarAndExits130) {
@@ -242,11 +254,8 @@ TEST_F(RenderCli, InterruptWritesTheSamplesSoFarAndExits130) {
                                path("output.txt"));
     ASSERT_TRUE(render.wait_for_output("/100000 spp", std::chrono::seconds(60))) << render.output();
     render.signal(SIGINT);
-    const auto status = render.wait(std::chrono::seconds(60));
-    ASSERT_TRUE(status) << "still running after Ctrl-C";
-    const std::string output = render.output();
-    ASSERT_TRUE(WIFEXITED(*status)) << output;
-    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    const std::string output = expect_interrupted_exit(render, std::chrono::seconds(60));
+    if (HasFailure()) return;
     const auto stats = nlohmann::json::parse(std::ifstream(path("s.json")));
     const int spp = stats["spp"].get<int>();
     EXPECT_GE(spp, 1);
@@ -274,11 +283,8 @@ TEST_F(RenderCli, InterruptBeforeTheFirstPassWritesNothing) {
         << render.output();
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     render.signal(SIGINT);
-    const auto status = render.wait(std::chrono::seconds(120));
-    ASSERT_TRUE(status) << "still running after Ctrl-C";
-    const std::string output = render.output();
-    ASSERT_TRUE(WIFEXITED(*status)) << output;
-    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    const std::string output = expect_interrupted_exit(render, std::chrono::seconds(120));
+    if (HasFailure()) return;
     EXPECT_NE(output.find("edacrt: interrupted: no pass completed, nothing written"),
               std::string::npos)
         << output;
@@ -300,11 +306,8 @@ TEST_F(RenderCli, ASecondInterruptExitsAtOnce) {
     render.signal(SIGINT);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     render.signal(SIGINT);
-    const auto status = render.wait(std::chrono::seconds(5));
-    ASSERT_TRUE(status) << "still running 5 s after the second Ctrl-C";
-    const std::string output = render.output();
-    ASSERT_TRUE(WIFEXITED(*status)) << output;
-    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    const std::string output = expect_interrupted_exit(render, std::chrono::seconds(5));
+    if (HasFailure()) return;
     EXPECT_FALSE(std::filesystem::exists(path("x.png")));
 }
 
@@ -317,11 +320,8 @@ TEST_F(RenderCli, InterruptStopsAnAnimationAfterTheCurrentFrame) {
         path("output.txt"));
     ASSERT_TRUE(render.wait_for_output("/100000 spp", std::chrono::seconds(60))) << render.output();
     render.signal(SIGINT);
-    const auto status = render.wait(std::chrono::seconds(60));
-    ASSERT_TRUE(status) << "still running after Ctrl-C";
-    const std::string output = render.output();
-    ASSERT_TRUE(WIFEXITED(*status)) << output;
-    EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
+    const std::string output = expect_interrupted_exit(render, std::chrono::seconds(60));
+    if (HasFailure()) return;
     EXPECT_NE(output.find("edacrt: interrupted: frame 0: wrote " + path("f0.png") + " with "),
               std::string::npos)
         << output;

@@ -200,6 +200,13 @@ class PrintTallies : public ::testing::Environment {
 };
 const auto* const kPrintTallies = ::testing::AddGlobalTestEnvironment(new PrintTallies);
 
+/// A distance in full (std::to_string prints 1e-35 as 0.000000).
+std::string decimal(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", t);
+    return text;
+}
+
 std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& rays,
                                   const std::string& label, bool all_hit, double tolerance = 1e-5,
                                   std::size_t embree_allowance = 0) {
@@ -238,11 +245,10 @@ std::size_t expect_reference_hits(const Scene& scene, const std::vector<Ray>& ra
                                 << hits[i].u << ", v " << hits[i].v;
             if (!ok && wrong++ < 3 && !allowed)
                 ADD_FAILURE() << label << ", " << method.name << ", closest, ray " << i << ": got "
-                              << (hits[i].hit() ? "t " + std::to_string(hits[i].t) : "a miss")
+                              << (hits[i].hit() ? "t " + decimal(hits[i].t) : "a miss")
                               << ", reference "
-                              << (reference[i].prim >= 0
-                                      ? "t " + std::to_string(double(reference[i].t))
-                                      : "a miss");
+                              << (reference[i].prim >= 0 ? "t " + decimal(double(reference[i].t))
+                                                         : "a miss");
         }
         EXPECT_LE(wrong, allowed) << label << ", " << method.name << ", closest: wrong hits";
         if (embree) embree_wrong += wrong;
@@ -559,6 +565,29 @@ TEST(HardCases, ShortDirectionsGiveTheSameHitsAsUnitOnes) {
     std::mt19937 rng(77);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     for (const double length : {0x1p-64 * std::sqrt(3.0), 1e-19, 1e-15, 1e-10})
+        for (const double radius : {1e-3, 1.0, 10.0}) {
+            const glm::dvec3 centre = 10.0 * radius * random_direction(rng);
+            const Scene scene = transformed(unit_sphere, radius, centre);
+            std::vector<Ray> rays = sphere_rays(centre, radius, rng, 200);
+            for (Ray& ray : rays) {
+                ray.dir = glm::vec3(glm::dvec3(ray.dir) * length);
+                ASSERT_EQ(validate_ray(ray), "");
+            }
+            char label[64];
+            std::snprintf(label, sizeof label, "length %g, radius %g", length, radius);
+            expect_reference_hits(scene, rays, label, false);
+        }
+}
+
+TEST(HardCases, LongDirectionsGiveTheSameHitsAsUnitOnes) {
+    // Directions 1e10 to 1e33 long: t is then a distance over 1e33, near 1e-35, and the sheared
+    // z of the corners as small, so the products of t's numerator (edge function times z) went
+    // denormal and float t lost up to a third of its value (found by the fan fuzzer: a
+    // direction of 1.2e33 against a fan of thin triangles). Such products are now refined in
+    // double (kSmallestDistanceProduct).
+    const Scene unit_sphere = make_builtin_scene("builtin:sphere:subdiv=2");
+    std::mt19937 rng(33);
+    for (const double length : {1e10, 1e20, 1e30, 1e33})
         for (const double radius : {1e-3, 1.0, 10.0}) {
             const glm::dvec3 centre = 10.0 * radius * random_direction(rng);
             const Scene scene = transformed(unit_sphere, radius, centre);

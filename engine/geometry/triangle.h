@@ -63,6 +63,11 @@ constexpr Real rounding_gamma(int n) {
     return Real(n) * u / (1 - Real(n) * u);
 }
 
+/// Below this, the products of t's numerator (edge function times sheared z) may be denormal
+/// and lose digits; t is then computed in double. The bound's dominant term, gamma(3) times
+/// this, stays far above the denormals' absolute error of 2^-149 per operation.
+inline constexpr float kSmallestDistanceProduct = 0x1p-100f;
+
 /// The sheared corners (x, y, z of A, B, C relative to the ray origin, in the ray's frame) and
 /// the scaled barycentrics U, V, W of one ray/triangle pair, in float or double.
 template <typename Real>
@@ -80,12 +85,16 @@ struct ShearedTriangle {
     /// t, not max|z| as in pbrt. For a small triangle far away that spread is its size, not its
     /// distance, so the bound stays near 1e-7 t instead of 1e-4 t. For a long thin triangle seen
     /// from close by the spread is its length and the bound large: intersect_triangle then
-    /// refines in double. Infinite when E may be within rounding of zero. Evaluated in Real, so
-    /// the rare path keeps its range at tiny and huge coordinates.
+    /// refines in double. Infinite when E may be within rounding of zero, or when the products
+    /// e_i z_i may be denormal (below kSmallestDistanceProduct: a direction of 1e33 makes z
+    /// near 1e-33, and t lost a third of its value to the products' missing digits).
     Real distance_error(Real t, Real shear_x, Real shear_y) const {
         const Real max_z = std::max({std::abs(az), std::abs(bz), std::abs(cz)});
         const Real max_x = std::max({std::abs(ax), std::abs(bx), std::abs(cx)});
         const Real max_y = std::max({std::abs(ay), std::abs(by), std::abs(cy)});
+        const Real max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
+        if (!(max_e * max_z >= Real(kSmallestDistanceProduct)))
+            return std::numeric_limits<Real>::infinity();
         const Real spread = std::max({std::abs(az - t), std::abs(bz - t), std::abs(cz - t)});
         const Real gamma2 = rounding_gamma<float>(2), gamma3 = rounding_gamma<float>(3),
                    gamma5 = rounding_gamma<float>(5);
@@ -93,7 +102,6 @@ struct ShearedTriangle {
         const Real delta_x = gamma5 * (max_x + shear_x * max_z);
         const Real delta_y = gamma5 * (max_y + shear_y * max_z);
         const Real delta_e = 2 * (gamma2 * max_x * max_y + delta_y * max_x + delta_x * max_y);
-        const Real max_e = std::max({std::abs(u), std::abs(v), std::abs(w)});
         // |dE| <= 3 de + the rounding of the sum; the spread about the computed t may be off by
         // the error itself, which takes another 3 de from the denominator.
         const Real denominator = std::abs(u + v + w) - 6 * delta_e - 3 * gamma2 * max_e;

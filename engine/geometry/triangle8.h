@@ -117,9 +117,11 @@ struct ShearedTriangles8 {
                                    mul(delta_z, max_e)),
                                mul(delta_e, delta_z)),
                            mul(mul(set(gamma2), max_e), abs(t))));
+    const __m256 bounded = all(cmp<_CMP_GT_OQ>(denominator, zero),
+                               cmp<_CMP_GE_OQ>(mul(max_e, max_z), set(kSmallestDistanceProduct)));
     const __m256 error = _mm256_blendv_ps(
         set(kInfinity), add(_mm256_div_ps(numerator, denominator), mul(set(gamma2), abs(t))),
-        cmp<_CMP_GT_OQ>(denominator, zero));
+        bounded);
     const __m256 lo = tmin, hi = tmax;
     const __m256 near_end = add(t, error);
     const __m256 rejected = any(cmp<_CMP_LE_OQ>(near_end, zero), cmp<_CMP_LT_OQ>(near_end, lo),

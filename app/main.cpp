@@ -1,6 +1,7 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
 
+#include "camera_flags.h"
 #include "parse_command_line.h"
 #include "scene/animation.h"
 #include "viewer.h"
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100000000));
     app.add_option("--screenshot", o.screenshot, "save the window as PNG before quitting");
     app.add_option("--script", o.script, "run UI actions from a file (see app/script.h)");
-    edacrt::cli::add_camera_options(app, o.camera);
+    edacrt::flags::add_camera_options(app, o.camera);
     app.add_flag("--hide-panels", o.hide_panels, "start with the panels hidden (Tab shows them)");
     app.add_option("--bookmarks", o.bookmarks,
                    "camera bookmarks file (default: $XDG_CONFIG_HOME/edacrt/bookmarks.json)");
@@ -44,8 +45,8 @@ int main(int argc, char** argv) {
     app.add_option("--shutter", o.shutter,
                    "motion blur: seconds of shutter around the frame's time (0: none)")
         ->group(group);
-    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
+    if (const auto status = edacrt::flags::parse_command_line(app, argc, argv)) return *status;
     // What escapes the viewer's own reports is a bug: an internal error, not an abort.
-    return edacrt::cli::run_reporting_errors("edacrt_viewer",
-                                             [&] { return edacrt::app::run_viewer(o); });
+    return edacrt::flags::run_reporting_errors("edacrt_viewer",
+                                               [&] { return edacrt::app::run_viewer(o); });
 }

@@ -22,10 +22,10 @@
 #include <optional>
 #include <tuple>
 
-#include "camera_options.h"
 #include "command_line.h"
 #include "display.h"
 #include "panels/panels.h"
+#include "render/camera_options.h"
 #include "render/default_camera.h"
 #include "render/film.h"
 #include "render/image.h"

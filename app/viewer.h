@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "camera_options.h"
+#include "render/camera_options.h"
 
 namespace edacrt::app {
 
@@ -12,13 +12,13 @@ struct ViewerOptions {
     int spp = 1024;
     int width = 1280;  // window size
     int height = 800;
-    int frames = 0;             // > 0: quit after this many frames (with --screenshot: save first)
-    std::string screenshot;     // PNG of the window, taken at the last frame
-    std::string script;         // UI actions (app/script.h)
-    std::string assets_dir;     // where the scene list looks; default: next to the scene
-    cli::CameraOptions camera;  // --eye, --look-at, --up, --fov (as in edacrt render)
-    bool hide_panels = false;   // start with the image alone (Tab / F1 toggles)
-    std::string bookmarks;      // the bookmarks file; default: Bookmarks::default_path()
+    int frames = 0;            // > 0: quit after this many frames (with --screenshot: save first)
+    std::string screenshot;    // PNG of the window, taken at the last frame
+    std::string script;        // UI actions (app/script.h)
+    std::string assets_dir;    // where the scene list looks; default: next to the scene
+    CameraOptions camera;      // --eye, --look-at, --up, --fov (as in edacrt render)
+    bool hide_panels = false;  // start with the image alone (Tab / F1 toggles)
+    std::string bookmarks;     // the bookmarks file; default: Bookmarks::default_path()
     // Animation (as edacrt render's flags): the spec, the time shown first, whether it plays.
     std::string animate;
     double time = 0.0;

@@ -21,8 +21,8 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 /// Loads a scene into the state; on failure keeps the previous one and shows the error. The
-/// camera flags override the scene's view (cli/camera_options.h), for the first scene only.
-void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions& flags,
+/// camera flags override the scene's view (render/camera_options.h), for the first scene only.
+void load_into(ViewerState& s, const std::string& spec, const CameraOptions& flags,
                const std::string& animation, bool keep_view) {
     try {
         // An animation file or OBJ sequence names its own geometry.
@@ -40,7 +40,7 @@ void load_into(ViewerState& s, const std::string& spec, const cli::CameraOptions
         }
         if (!keep_view) {
             s.scene_camera = default_camera(*scene);
-            s.camera.reset(cli::choose_camera(*scene, flags));
+            s.camera.reset(choose_camera(*scene, flags));
         }
         // The file's name only: an absolute path wraps the tab's header onto several lines
         // (the full path is the header's tooltip).

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "camera_options.h"
+#include "render/camera_options.h"
 #include "render_worker.h"
 #include "viewer_state.h"
 
@@ -15,11 +15,11 @@ namespace edacrt::app {
 /// Loads a scene into the state, animated as `animation` says (a spec of
 /// load_animated_scene(); an animation file or OBJ sequence may be given as `spec` itself), at
 /// time 0; on failure keeps the previous one and shows the error. The camera flags override
-/// the scene's view (cli/camera_options.h); `keep_view` keeps the current camera (a new
+/// the scene's view (render/camera_options.h); `keep_view` keeps the current camera (a new
 /// animation of the same scene).
 void load_into(ViewerState& state, const std::string& spec,
-               const cli::CameraOptions& flags = cli::CameraOptions{},
-               const std::string& animation = "", bool keep_view = false);
+               const CameraOptions& flags = CameraOptions{}, const std::string& animation = "",
+               bool keep_view = false);
 
 /// The request for the current settings; width x height: the image region in framebuffer
 /// pixels.

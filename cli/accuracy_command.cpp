@@ -10,11 +10,11 @@
 #include <span>
 #include <sstream>
 
-#include "camera_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "progress.h"
 #include "render/bsdf.h"
+#include "render/camera_options.h"
 #include "render/shading_scene.h"
 #include "trace/reference_hits.h"
 #include "util/error.h"

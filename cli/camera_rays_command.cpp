@@ -1,7 +1,7 @@
 // edacrt camera-rays: writes a ray file of one camera ray per pixel centre, for `edacrt trace`.
 #include <iostream>
 
-#include "camera_options.h"
+#include "camera_flags.h"
 #include "commands.h"
 #include "common_options.h"
 #include "trace/ray_file.h"
@@ -37,8 +37,8 @@ std::function<void()> add_camera_rays_command(CLI::App& app) {
         "Example: edacrt camera-rays --scene assets/spot/spot.obj --out out/spot_1m.rays");
     command->add_option("--scene", o.scene, "OBJ file or builtin:NAME (frames the camera)")
         ->required();
-    add_image_size_options(*command, o.width, o.height);
-    add_camera_options(*command, o.camera);
+    flags::add_image_size_options(*command, o.width, o.height);
+    flags::add_camera_options(*command, o.camera);
     command->add_option("--out", o.out, "output ray file")->required();
     return [options] { run(*options); };
 }

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "camera_options.h"
+#include "camera_flags.h"
 #include "commands.h"
 #include "render/default_camera.h"
 #include "render/image_format.h"
@@ -56,9 +56,7 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
                              {"textures", textures}});
     }
     const Camera camera = choose_camera(scene, o.camera);
-    const bool given =
-        !o.camera.eye.empty() || !o.camera.look_at.empty() || !o.camera.up.empty() || o.camera.fov;
-    const std::string from = given                ? "the camera options"
+    const std::string from = o.camera.given()     ? "the camera options"
                              : scene.camera       ? "the scene"
                              : is_interior(scene) ? "inside the interior, above the floor"
                                                   : "framing the bounds from +z";
@@ -174,7 +172,7 @@ std::function<void()> add_info_command(CLI::App& app) {
         "assets/cornell-box/CornellBox-Original.obj --width 1920 --height 1080 --json");
     command->add_option("scene", o.scene, "OBJ file or builtin:NAME")->required();
     command->add_flag("--json", o.json, "print JSON instead of text (for scripts)");
-    add_image_size_options(*command, o.settings.width, o.settings.height);
+    flags::add_image_size_options(*command, o.settings.width, o.settings.height);
     command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
     command->add_option("--spp", o.spp, "samples per pixel")
         ->check(CLI::Range(1, 1 << 20))
@@ -183,7 +181,7 @@ std::function<void()> add_info_command(CLI::App& app) {
         ->add_option("--samples-per-pass", o.settings.samples_per_pass,
                      "samples per pixel traced together in one pass (at most --spp)")
         ->capture_default_str();
-    add_camera_options(*command, o.camera);
+    flags::add_camera_options(*command, o.camera);
     return [options] { run(*options); };
 }
 

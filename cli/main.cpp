@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
     const auto run_accuracy = edacrt::cli::add_accuracy_command(app);
     const auto run_bench = edacrt::cli::add_bench_command(app);
     const auto run_info = edacrt::cli::add_info_command(app);
-    if (const auto status = edacrt::cli::parse_command_line(app, argc, argv)) return *status;
+    if (const auto status = edacrt::flags::parse_command_line(app, argc, argv)) return *status;
 
-    const int status = edacrt::cli::run_reporting_errors("edacrt", [&] {
+    const int status = edacrt::flags::run_reporting_errors("edacrt", [&] {
         try {
             if (app.got_subcommand("render")) run_render();
             if (app.got_subcommand("trace")) run_trace();
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     // The report on stdout is output too: a full disk or closed pipe must not pass as success.
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
         std::cerr << "edacrt: error: cannot write to standard output\n";
-        return edacrt::cli::kExitInputError;
+        return edacrt::flags::kExitInputError;
     }
     return 0;
 }

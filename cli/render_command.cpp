@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "animation_options.h"
-#include "camera_options.h"
+#include "camera_flags.h"
 #include "commands.h"
 #include "common_options.h"
 #include "interrupt.h"
@@ -280,7 +280,7 @@ std::function<void()> add_render_command(CLI::App& app) {
         "--scene assets/cornell-box/CornellBox-Original.obj --spp 64 --out out/cornell.exr");
     add_common_options(*command, o.common);
     RenderSettings& s = o.settings;
-    add_image_size_options(*command, s.width, s.height);
+    flags::add_image_size_options(*command, s.width, s.height);
     command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
     command->add_option("--primary", o.primary, "primary shading: eye-light|normal|albedo|depth")
         ->capture_default_str();
@@ -333,7 +333,7 @@ std::function<void()> add_render_command(CLI::App& app) {
                      "sRGB, tone-mapped), .hdr (Radiance RGBE), .pfm (float), .exr (OpenEXR "
                      "with the render's settings in its header)")
         ->capture_default_str();
-    add_camera_options(*command, o.camera);
+    flags::add_camera_options(*command, o.camera);
     add_animation_options(*command, o.animation);
     return [options] { run(*options); };
 }

@@ -7,7 +7,9 @@
 #include <glm/trigonometric.hpp>
 #include <iostream>
 
+#include "render/camera_options.h"
 #include "render/default_camera.h"
+#include "scene/builtin_scenes.h"
 #include "test_paths.h"
 #include "util/error.h"
 
@@ -153,6 +155,34 @@ TEST(DefaultCamera, ObjectsAreFramedFromOutsideInteriorsSeenFromInside) {
             EXPECT_TRUE(inside(scene.bounds(), camera.eye)) << file;
         }
     }
+}
+
+// The camera flags (render/camera_options.h): each given setting overrides the scene's view,
+// the others keep it, and the result is validated.
+TEST(CameraOptions, EachGivenSettingOverridesTheScenesView) {
+    const Scene scene = make_builtin_scene("builtin:cornell");
+    const Camera scene_view = default_camera(scene);
+    EXPECT_EQ(choose_camera(scene, {}), scene_view);
+    CameraOptions options;
+    EXPECT_FALSE(options.given());
+    options.fov = {30.0f};
+    options.eye = {1.0f, 2.0f, 3.0f};
+    EXPECT_TRUE(options.given());
+    const Camera camera = choose_camera(scene, options);
+    EXPECT_EQ(camera.eye, glm::vec3(1.0f, 2.0f, 3.0f));
+    EXPECT_EQ(camera.vfov_degrees, 30.0f);
+    EXPECT_EQ(camera.look_at, scene_view.look_at);
+    EXPECT_EQ(camera.up, scene_view.up);
+    options.fov = {180.0f};
+    EXPECT_THROW(choose_camera(scene, options), InputError);
+    // One description per flag: the keys are the flags of both tools, each with help.
+    std::vector<std::string> keys;
+    for (const CameraParam& param : camera_params()) {
+        keys.emplace_back(param.key);
+        EXPECT_FALSE(param.help.empty()) << param.key;
+        EXPECT_TRUE(param.count == 1 || param.count == 3) << param.key;
+    }
+    EXPECT_EQ(keys, (std::vector<std::string>{"eye", "look-at", "up", "fov"}));
 }
 
 }  // namespace

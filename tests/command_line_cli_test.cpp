@@ -59,7 +59,7 @@ TEST(CommandLineCli, UsageErrorsAreOneLineWithStatus2) {
 TEST(CommandLineCli, InternalErrorsHaveStatus70) {
     const auto run = [](const std::function<int()>& work) {
         testing::internal::CaptureStderr();
-        const int status = cli::run_reporting_errors("tool", work);
+        const int status = flags::run_reporting_errors("tool", work);
         return std::pair(status, testing::internal::GetCapturedStderr());
     };
     EXPECT_EQ(run([] { return 0; }), std::pair(0, std::string()));

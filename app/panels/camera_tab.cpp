@@ -3,8 +3,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include <glm/gtc/type_ptr.hpp>
+#include <algorithm>
 #include <iostream>
+#include <string>
 
 #include "panels.h"
 #include "util/printable.h"
@@ -29,16 +30,22 @@ void change_bookmarks(ViewerState& s, F&& change) {
 void draw_camera_tab(ViewerState& s) {
     Camera c = s.camera.camera();
     bool edited = false;
-    ImGui::PushItemWidth(-ImGui::CalcTextSize("look-at").x - ImGui::GetStyle().ItemSpacing.x);
-    edited |= ImGui::InputFloat3("eye", glm::value_ptr(c.eye), "%.4g",
-                                 ImGuiInputTextFlags_EnterReturnsTrue);
-    edited |= ImGui::InputFloat3("look-at", glm::value_ptr(c.look_at), "%.4g",
-                                 ImGuiInputTextFlags_EnterReturnsTrue);
-    edited |= ImGui::InputFloat3("up", glm::value_ptr(c.up), "%.4g",
-                                 ImGuiInputTextFlags_EnterReturnsTrue);
-    edited |= ImGui::SliderFloat("fov", &c.vfov_degrees, 5.0f, 150.0f, "%.1f deg");
+    // One widget per camera setting, labelled by its flag (render/camera_options.h).
+    float label = 0.0f;
+    for (const CameraParam& param : camera_params())
+        label = std::max(label, ImGui::CalcTextSize(std::string(param.key).c_str()).x);
+    ImGui::PushItemWidth(-label - ImGui::GetStyle().ItemSpacing.x);
+    for (const CameraParam& param : camera_params()) {
+        const std::string key(param.key), format(param.ui_format);
+        if (param.count == 3)
+            edited |= ImGui::InputFloat3(key.c_str(), param.field(c), format.c_str(),
+                                         ImGuiInputTextFlags_EnterReturnsTrue);
+        else
+            edited |= ImGui::SliderFloat(key.c_str(), param.field(c), param.ui_min, param.ui_max,
+                                         format.c_str());
+        wrapped_tooltip(std::string(param.help));
+    }
     ImGui::PopItemWidth();
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("vertical field of view, degrees");
     if (edited) {
         try {
             validate(c);

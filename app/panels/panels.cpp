@@ -49,6 +49,15 @@ void cell_text(const char* format, ...) {
     ImGui::TextUnformatted(text);
 }
 
+void wrapped_tooltip(const std::string& text) {
+    if (!ImGui::IsItemHovered()) return;
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+}
+
 void error_text(const std::string& text) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
     ImGui::TextWrapped("%s", text.c_str());

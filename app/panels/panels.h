@@ -2,6 +2,8 @@
 // The viewer's panels: immediate-mode drawing of the ViewerState (ImGui, needs a frame).
 #include <imgui.h>
 
+#include <string>
+
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -34,6 +36,9 @@ void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const 
                       unsigned colour, float thickness = 1.0f);
 /// Where image pixel (x, y) of a width x height image appears in the window.
 ImVec2 image_to_window(const ViewerState& state, float x, float y, int width, int height);
+
+/// A tooltip for the last item, wrapped at a readable width.
+void wrapped_tooltip(const std::string& text);
 
 /// An error, wrapped, in red.
 void error_text(const std::string& text);

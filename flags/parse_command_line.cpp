@@ -7,7 +7,7 @@
 #include "util/error.h"
 #include "util/printable.h"
 
-namespace edacrt::cli {
+namespace edacrt::flags {
 
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
     app.set_version_flag("--version", app.get_name() + " " + EDACRT_VERSION);
@@ -52,4 +52,4 @@ int run_reporting_errors(const std::string& tool, const std::function<int()>& wo
     return kExitInputError;
 }
 
-}  // namespace edacrt::cli
+}  // namespace edacrt::flags

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace edacrt::cli {
+namespace edacrt::flags {
 
 // Exit statuses (listed in --help): 0 success, and 130 for Ctrl-C (cli/interrupt.h).
 constexpr int kExitInputError = 1;      // a file or value that is wrong, or cannot be written
@@ -25,4 +25,4 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv);
 /// error: WHAT" for any other exception (kExitInternalError).
 int run_reporting_errors(const std::string& tool, const std::function<int()>& work);
 
-}  // namespace edacrt::cli
+}  // namespace edacrt::flags

@@ -1,0 +1,40 @@
+#include "render/camera_options.h"
+
+#include <algorithm>
+#include <array>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "render/default_camera.h"
+
+namespace edacrt {
+namespace {
+
+const std::array<CameraParam, 4> kCameraParams = {{
+    {"eye",
+     "camera position X,Y,Z (default: the scene's own camera; else inside an interior, near the "
+     "middle of the floor; else framing the scene from +z)",
+     3, &CameraOptions::eye, [](Camera& c) { return glm::value_ptr(c.eye); }, "%.4g", 0.0f, 0.0f},
+    {"look-at", "point the camera looks at X,Y,Z", 3, &CameraOptions::look_at,
+     [](Camera& c) { return glm::value_ptr(c.look_at); }, "%.4g", 0.0f, 0.0f},
+    {"up", "camera up vector X,Y,Z", 3, &CameraOptions::up,
+     [](Camera& c) { return glm::value_ptr(c.up); }, "%.4g", 0.0f, 0.0f},
+    {"fov", "vertical field of view in degrees", 1, &CameraOptions::fov,
+     [](Camera& c) { return &c.vfov_degrees; }, "%.1f deg", 5.0f, 150.0f},
+}};
+
+}  // namespace
+
+std::span<const CameraParam> camera_params() { return kCameraParams; }
+
+Camera choose_camera(const Scene& scene, const CameraOptions& options) {
+    Camera camera = default_camera(scene);
+    for (const CameraParam& param : kCameraParams) {
+        const std::vector<float>& values = options.*param.given;
+        if (values.size() >= param.count)
+            std::copy_n(values.begin(), param.count, param.field(camera));
+    }
+    validate(camera);
+    return camera;
+}
+
+}  // namespace edacrt

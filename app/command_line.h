@@ -4,6 +4,7 @@
 // every EDACRT parameter that differs from its default, and the animation time.
 #include <string>
 
+#include "render/film.h"
 #include "render/render_settings.h"
 #include "scene/camera.h"
 #include "trace/tracer.h"
@@ -26,7 +27,7 @@ struct ViewCommand {
     Camera camera;
     int spp = 1;
     float exposure = 0.0f;
-    std::string tone_map = "clamp";
+    ToneMap tone_map = ToneMap::clamp;
     std::string out = "out/view.png";
 };
 

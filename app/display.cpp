@@ -101,7 +101,7 @@ void Display::draw(bool heat, const Tone& tone, float heat_max, bool heat_log) c
     glUniform1i(glGetUniformLocation(program_, "image"), 0);
     glUniform1i(glGetUniformLocation(program_, "mode"), heat ? 1 : 0);
     glUniform1f(glGetUniformLocation(program_, "exposure"), tone.exposure);
-    glUniform1i(glGetUniformLocation(program_, "tone_map"), tone.tone_map);
+    glUniform1i(glGetUniformLocation(program_, "tone_map"), int(tone.tone_map));
     glUniform1f(glGetUniformLocation(program_, "heat_max"), heat_max);
     glUniform1i(glGetUniformLocation(program_, "heat_log"), heat_log ? 1 : 0);
     glBindVertexArray(vertex_array_);

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "render/film.h"
 #include "render/image.h"
 
 namespace edacrt::app {
@@ -23,7 +24,7 @@ class Display {
 
     struct Tone {
         float exposure = 0.0f;
-        int tone_map = 0;  // 0 clamp, 1 Reinhard, 2 ACES
+        ToneMap tone_map = ToneMap::clamp;  // the shader's tone_map is its number
     };
     /// Draws the image over the whole viewport.
     void draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const;

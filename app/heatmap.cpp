@@ -5,22 +5,6 @@
 
 namespace edacrt::app {
 
-std::string_view view_name(View view) {
-    switch (view) {
-        case View::render:
-            return "render";
-        case View::box_tests:
-            return "ray-box tests";
-        case View::triangle_tests:
-            return "ray-triangle tests";
-        case View::depth:
-            return "recursion depth";
-        case View::order_misses:
-            return "traversal-order misses";
-    }
-    return "?";
-}
-
 std::vector<float> heat_values(const TraceDetail& detail, View view) {
     std::vector<float> values(detail.rays.size());
     for (std::size_t i = 0; i < values.size(); ++i) {

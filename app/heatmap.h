@@ -6,14 +6,19 @@
 #include <vector>
 
 #include "trace/trace_stats.h"
+#include "util/enum_table.h"
 
 namespace edacrt::app {
 
 /// What the image shows: the render, or one per-pixel count of the first pass's camera rays.
+/// The names are the script's (`view NAME`), the help the heat map tab's labels.
 enum class View { render, box_tests, triangle_tests, depth, order_misses };
-inline constexpr View kViews[] = {View::render, View::box_tests, View::triangle_tests, View::depth,
-                                  View::order_misses};
-std::string_view view_name(View view);
+inline constexpr auto kViews =
+    enum_table<View>("view", {{View::render, "render", "render"},
+                              {View::box_tests, "box", "ray-box tests"},
+                              {View::triangle_tests, "triangle", "ray-triangle tests"},
+                              {View::depth, "depth", "recursion depth"},
+                              {View::order_misses, "order", "traversal-order misses"}});
 
 /// One value per pixel (row by row from the top) of `view` from the per-ray statistics.
 std::vector<float> heat_values(const TraceDetail& detail, View view);

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include "camera_flags.h"
+#include "enum_flags.h"
 #include "parse_command_line.h"
 #include "scene/animation.h"
 #include "viewer.h"
@@ -12,8 +13,9 @@ int main(int argc, char** argv) {
     CLI::App app{"EDACRT Studio viewer: progressive rendering with divide-and-conquer ray tracing",
                  "edacrt_viewer"};
     app.add_option("scene", o.scene, "OBJ file or builtin:NAME")->capture_default_str();
-    app.add_option("--method", o.method, "edacrt|dacrt|bvh|embree|naive")->capture_default_str();
-    app.add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
+    edacrt::flags::add_enum_option(app, "--method", o.method, edacrt::kMethods, "tracing method");
+    edacrt::flags::add_enum_option(app, "--integrator", o.integrator, edacrt::kIntegrators,
+                                   "integrator");
     app.add_option("--spp", o.spp, "samples per pixel to accumulate")
         ->check(CLI::Range(edacrt::app::setting_range("spp").min,
                            edacrt::app::setting_range("spp").max))
@@ -38,9 +40,8 @@ int main(int argc, char** argv) {
     app.add_option("--speed", o.speed, "animation seconds per second (0.05 to 4)")
         ->capture_default_str()
         ->group(group);
-    app.add_option("--update", o.update,
-                   "how bvh and embree take each frame: rebuild, dynamic, refit")
-        ->capture_default_str()
+    edacrt::flags::add_enum_option(app, "--update", o.update, edacrt::kSceneUpdates,
+                                   "how the tracer takes each frame")
         ->group(group);
     app.add_option("--shutter", o.shutter,
                    "motion blur: seconds of shutter around the frame's time (0: none)")

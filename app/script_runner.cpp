@@ -60,7 +60,7 @@ void ScriptRunner::step(ViewerState& s, int shown_spp, std::string& screenshot, 
             ++next_;
             return;  // the next frame submits the change before anything waits on it
         } else if (c.verb == "view") {
-            s.view = parse_view(c.args[0]);
+            s.view = parse_enum_or_throw(kViews, c.args[0]);
         } else if (c.verb == "tab") {
             std::string name = c.args[0];
             std::replace(name.begin(), name.end(), '_', ' ');

@@ -1,5 +1,5 @@
-// The viewer's settings as the script and tests drive them: `set KEY VALUE`, view names, and
-// whether a recording still describes the render in progress.
+// The viewer's settings as the script and tests drive them: `set KEY VALUE`, and whether a
+// recording still describes the render in progress.
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -59,13 +59,13 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         }
     };
     if (key == "method")
-        ui.method = parse_method(value);
+        ui.method = parse_enum_or_throw(kMethods, value);
     else if (key == "embree-mode")
-        ui.embree_mode = parse_embree_mode(value);
+        ui.embree_mode = parse_enum_or_throw(kEmbreeModes, value);
     else if (key == "integrator")
-        ui.integrator = parse_integrator(value);
+        ui.integrator = parse_enum_or_throw(kIntegrators, value);
     else if (key == "primary")
-        ui.primary = parse_primary_shading(value);
+        ui.primary = parse_enum_or_throw(kPrimaryShadings, value);
     else if (key == "spp" || key == "threads" || key == "resolution" || key == "seed") {
         const double v = check_setting(key, number());
         if (key == "spp") ui.spp_target = int(v);
@@ -124,7 +124,7 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         } else if (key == "loop") {
             a.loop = number() != 0;
         } else if (key == "update") {
-            a.update = parse_scene_update(value);
+            a.update = parse_enum_or_throw(kSceneUpdates, value);
         } else {  // shutter: seconds of motion blur, 0 for none
             const double shutter = number();
             if (!(shutter >= 0.0 && shutter <= 1e3))
@@ -134,15 +134,6 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         }
     } else
         throw InputError("unknown setting '" + key + "'");
-}
-
-View parse_view(const std::string& name) {
-    if (name == "render") return View::render;
-    if (name == "box") return View::box_tests;
-    if (name == "triangle") return View::triangle_tests;
-    if (name == "depth") return View::depth;
-    if (name == "order") return View::order_misses;
-    throw InputError("unknown view '" + name + "' (render, box, triangle, depth, order)");
 }
 
 double relative_rms_change(const Image& a, const Image& b) {

@@ -67,11 +67,12 @@ void save_framebuffer(const std::string& path, int x, int y, int width, int heig
 ImageOutput save_settings(const ViewerState& s) {
     ImageOutput output;
     output.exposure = s.exposure;
-    output.tone_map = ToneMap(s.tone_map);
-    output.metadata = render_metadata(
-        {"edacrt_viewer", s.scene ? s.scene->source : "", std::string(method_name(s.ui.method)),
-         std::string(integrator_name(s.ui.integrator)), s.frame->spp, std::uint32_t(s.ui.seed),
-         s.frame->seconds, s.camera.camera()});
+    output.tone_map = s.tone_map;
+    output.metadata =
+        render_metadata({"edacrt_viewer", s.scene ? s.scene->source : "",
+                         std::string(enum_name(kMethods, s.ui.method)),
+                         std::string(enum_name(kIntegrators, s.ui.integrator)), s.frame->spp,
+                         std::uint32_t(s.ui.seed), s.frame->seconds, s.camera.camera()});
     return output;
 }
 
@@ -119,8 +120,8 @@ int run_viewer(const ViewerOptions& options) {
     ViewerState s;
     std::optional<ScriptRunner> script;
     try {
-        s.ui.method = parse_method(options.method);
-        s.ui.integrator = parse_integrator(options.integrator);
+        s.ui.method = options.method;
+        s.ui.integrator = options.integrator;
         s.ui.spp_target = options.spp;
         if (!options.script.empty()) script.emplace(load_script(options.script));
     } catch (const std::exception& e) {
@@ -129,7 +130,7 @@ int run_viewer(const ViewerOptions& options) {
     }
     s.panels_hidden = options.hide_panels;
     try {
-        s.playback.update = parse_scene_update(options.update);
+        s.playback.update = options.update;
         if (!(options.shutter >= 0.0 && options.shutter <= 1e3))
             throw InputError("--shutter must be a number of seconds from 0 to 1000");
         check_setting("speed", options.speed);
@@ -335,8 +336,7 @@ int run_viewer(const ViewerOptions& options) {
                 {s.scene_path, bool(submitted.animation), s.animation_spec, submitted.time,
                  submitted.update, submitted.shutter, submitted.method, submitted.embree_mode,
                  submitted.params, submitted.settings, submitted.camera, submitted.spp_target,
-                 s.exposure, std::array{"clamp", "reinhard", "aces"}[std::size_t(s.tone_map)],
-                 timestamped(s, ".png")});
+                 s.exposure, s.tone_map, timestamped(s, ".png")});
 
             // The render pauses while methods are compared: their timings get the cores.
             s.comparing = comparison.valid();

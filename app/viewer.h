@@ -2,13 +2,15 @@
 #include <string>
 
 #include "render/camera_options.h"
+#include "render/render_settings.h"
+#include "trace/tracer.h"
 
 namespace edacrt::app {
 
 struct ViewerOptions {
     std::string scene = "assets/cornell-box/CornellBox-Original.obj";
-    std::string method = "edacrt";
-    std::string integrator = "path";
+    Method method = Method::edacrt;
+    Integrator integrator = Integrator::path;
     int spp = 1024;
     int width = 1280;  // window size
     int height = 800;
@@ -24,7 +26,7 @@ struct ViewerOptions {
     double time = 0.0;
     bool play = false;
     double speed = 1.0;
-    std::string update = "refit";
+    SceneUpdate update = SceneUpdate::refit;
     double shutter = 0.0;  // > 0: motion blur
 };
 

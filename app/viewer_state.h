@@ -11,6 +11,7 @@
 #include "heatmap.h"
 #include "layout.h"
 #include "orbit_camera.h"
+#include "render/film.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
 #include "scene/scene.h"
@@ -116,7 +117,7 @@ struct ViewerState {
     View view = View::render;
     bool heat_log = true;
     float exposure = 0.0f;
-    int tone_map = 0;  // clamp, Reinhard, ACES
+    ToneMap tone_map = ToneMap::clamp;  // of the display and the saved PNG
 
     std::shared_ptr<const Scene> scene;
     std::string scene_label;
@@ -228,9 +229,6 @@ double check_setting(std::string_view key, double value);
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
 /// exposure, scene, explorer level and node). Throws InputError.
 void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
-
-/// render | box | triangle | depth | order. Throws InputError.
-View parse_view(const std::string& name);
 
 /// True when the recording was made for another scene, view, size, seed, method or parameters
 /// than the render in progress.

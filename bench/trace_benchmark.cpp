@@ -84,7 +84,8 @@ void register_all() {
         for (Method method : {Method::edacrt, Method::dacrt, Method::bvh, Method::embree})
             for (bool bounce : {false, true})
                 for (Query query : {Query::closest, Query::any}) {
-                    const std::string label = name + "/" + std::string(method_name(method)) +
+                    const std::string label = name + "/" +
+                                              std::string(enum_name(kMethods, method)) +
                                               (bounce ? "/bounce" : "/camera") +
                                               (query == Query::any ? "/any" : "/closest");
                     benchmark::RegisterBenchmark(label.c_str(), trace_rays, path, method, bounce,

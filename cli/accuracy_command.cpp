@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "common_options.h"
+#include "enum_flags.h"
 #include "progress.h"
 #include "render/bsdf.h"
 #include "render/camera_options.h"
@@ -24,7 +25,7 @@ namespace {
 
 struct AccuracyOptions {
     CommonOptions common;
-    std::vector<std::string> methods = method_names();
+    std::vector<std::string> methods = enum_name_list(kMethods);
     int rays = 20000;
     std::uint32_t seed = 1;
     int repeats = 3;
@@ -203,9 +204,9 @@ void run(const AccuracyOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     if (o.rays < 1 || o.rays > 10'000'000) throw InputError("--rays must be 1..10000000");
     std::vector<std::string> methods = o.methods;
-    if (o.skip_naive) std::erase(methods, std::string(method_name(Method::naive)));
+    if (o.skip_naive) std::erase(methods, std::string(enum_name(kMethods, Method::naive)));
     if (methods.empty()) throw InputError("no method left to measure (--skip-naive removed naive)");
-    for (const std::string& name : methods) parse_method(name);  // before any work
+    for (const std::string& name : methods) parse_enum_or_throw(kMethods, name);  // before any work
     const Scene scene = load_scene_verbose(o.common.scene);
     if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
     const Camera camera = choose_camera(scene, CameraOptions{});
@@ -249,7 +250,7 @@ void run(const AccuracyOptions& o) {
     const double method_rays = double(set_rays) * o.repeats;
     for (const std::string& name : methods) {
         CommonOptions common = o.common;
-        common.method = name;
+        common.method = parse_enum_or_throw(kMethods, name);
         const auto tracer = make_tracer(common);
         Progress progress(style, name, Progress::Unit::rays);
         if (name == "naive") progress.expect_seconds(estimate.naive);
@@ -307,7 +308,10 @@ std::function<void()> add_accuracy_command(CLI::App& app) {
         "camera, random, surface, grazing and axis-parallel rays, and time them.\n"
         "Example: edacrt accuracy --scene assets/spot/spot.obj --stats out/accuracy.json");
     add_common_options(*command, o.common);
-    command->add_option("--methods", o.methods, "methods to measure")->delimiter(',');
+    command
+        ->add_option("--methods", o.methods,
+                     flags::enum_option_help("methods to measure", kMethods))
+        ->delimiter(',');
     command->add_flag("--skip-naive", o.skip_naive,
                       "leave naive out: its brute force takes most of the time on large scenes "
                       "(the estimate is printed up front); the hits are still compared with the "

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common_options.h"
+#include "enum_flags.h"
 #include "util/error.h"
 #include "util/frame_pattern.h"
 #include "util/printable.h"
@@ -58,12 +59,8 @@ void add_animation_options(CLI::App& command, AnimationOptions& o) {
     command.add_option("--fps", o.fps, "frames per second of --frames (0.001 to 10000)")
         ->capture_default_str()
         ->group(group);
-    command
-        .add_option("--update", o.update,
-                    "how the tracer takes each frame: rebuild (from scratch), dynamic (embree: "
-                    "a dynamic scene at low build quality), refit (bvh, embree: the tree kept, "
-                    "its boxes refitted)")
-        ->capture_default_str()
+    flags::add_enum_option(command, "--update", o.update, kSceneUpdates,
+                           "how the tracer takes each frame")
         ->group(group);
     command
         .add_option("--shutter", o.shutter,
@@ -74,7 +71,6 @@ void add_animation_options(CLI::App& command, AnimationOptions& o) {
 }
 
 std::vector<FrameJob> frame_jobs(const AnimationOptions& o, const std::string& out) {
-    parse_scene_update(o.update);  // refuses an unknown mode before any work
     if (!(o.shutter >= 0.0 && o.shutter <= 1e6))
         throw InputError("--shutter must be a number of seconds from 0 to 1e6");
     if (o.spec().empty()) {  // a still scene has one moment

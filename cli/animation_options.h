@@ -17,7 +17,7 @@ struct AnimationOptions {
     std::optional<double> time;  // seconds
     std::string frames;          // "A:B", inclusive
     double fps = 24.0;           // frame k of --frames is at t = k / fps
-    std::string update = "rebuild";
+    SceneUpdate update = SceneUpdate::rebuild;
     double shutter = 0.0;  // seconds of motion blur around each frame's time (0: none)
 
     /// The animation spec the flags name; empty for a still scene.

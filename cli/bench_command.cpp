@@ -19,6 +19,7 @@
 #include "bench_scenes.h"
 #include "commands.h"
 #include "common_options.h"
+#include "enum_flags.h"
 #include "progress.h"
 #include "render/render_memory.h"
 #include "scene/scene_paths.h"
@@ -32,7 +33,7 @@ namespace {
 struct BenchOptions {
     std::string scenes_dir;
     std::vector<std::string> scenes;
-    std::vector<std::string> sets = ray_set_kind_names();
+    std::vector<std::string> sets = enum_name_list(kRaySetKinds);
     std::vector<int> spp = {1, 4, 16};
     std::vector<std::string> methods = {"edacrt", "dacrt", "bvh", "embree"};
     int width = 1024, height = 1024;
@@ -58,7 +59,7 @@ struct Variant {
 std::vector<Variant> make_variants(const std::vector<std::string>& names) {
     std::vector<Variant> variants;
     for (const std::string& name : names) {
-        const Method method = parse_method(name);
+        const Method method = parse_enum_or_throw(kMethods, name);
         if (std::any_of(variants.begin(), variants.end(),
                         [&](const Variant& v) { return v.method == method; }))
             continue;
@@ -71,7 +72,8 @@ std::vector<Variant> make_variants(const std::vector<std::string>& names) {
         }
         make_tracer(Method::embree);  // throws when this build has no Embree
         for (EmbreeMode mode : {EmbreeMode::packet8, EmbreeMode::single, EmbreeMode::stream})
-            variants.push_back({"embree/" + std::string(embree_mode_name(mode)), method, mode});
+            variants.push_back(
+                {"embree/" + std::string(enum_name(kEmbreeModes, mode)), method, mode});
     }
     return variants;
 }
@@ -86,7 +88,7 @@ struct SetChoice {
 std::vector<SetChoice> make_set_choices(const BenchOptions& o) {
     std::vector<SetChoice> sets;
     for (const std::string& name : o.sets) {
-        const RaySetKind kind = parse_ray_set_kind(name);
+        const RaySetKind kind = parse_enum_or_throw(kRaySetKinds, name);
         if (kind != RaySetKind::camera) {
             sets.push_back({name, kind});
             continue;
@@ -377,7 +379,7 @@ std::function<void()> add_bench_command(CLI::App& app) {
                         "sibenik, conference, cornell, spot, teapot, an OBJ path or builtin:... "
                         "(default: bunny, sponza, sibenik, conference, cornell, spot, teapot; "
                         "absent ones are skipped)");
-    command->add_option("--sets", o.sets, "ray sets: camera, diffuse, ao, shadow")
+    command->add_option("--sets", o.sets, flags::enum_option_help("ray sets", kRaySetKinds))
         ->delimiter(',')
         ->capture_default_str();
     command->add_option("--spp", o.spp, "samples per pixel of the camera sets, one set each")
@@ -386,8 +388,9 @@ std::function<void()> add_bench_command(CLI::App& app) {
         ->capture_default_str();
     command
         ->add_option("--methods", o.methods,
-                     "methods: edacrt, dacrt, bvh, embree (all three modes, the fastest is the "
-                     "ratio base), naive (slow)")
+                     "methods: " + enum_names(kMethods) +
+                         " (embree: all three modes, the fastest is the ratio base; naive is "
+                         "slow)")
         ->delimiter(',')
         ->capture_default_str();
     command->add_option("--width", o.width, "pixels per row")

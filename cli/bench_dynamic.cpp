@@ -41,7 +41,7 @@ struct Variant {
 std::vector<Variant> make_variants(const std::vector<std::string>& names) {
     std::vector<Variant> variants;
     for (const std::string& name : names) {
-        const Method method = parse_method(name);
+        const Method method = parse_enum_or_throw(kMethods, name);
         if (std::any_of(variants.begin(), variants.end(),
                         [&](const Variant& v) { return v.method == method; }))
             continue;
@@ -55,7 +55,7 @@ std::vector<Variant> make_variants(const std::vector<std::string>& names) {
                 for (SceneUpdate how :
                      {SceneUpdate::rebuild, SceneUpdate::dynamic, SceneUpdate::refit})
                     variants.push_back(
-                        {"embree/" + std::string(scene_update_name(how)), method, how});
+                        {"embree/" + std::string(enum_name(kSceneUpdates, how)), method, how});
                 break;
             case Method::edacrt: {
                 variants.push_back({name, method, SceneUpdate::rebuild});
@@ -262,7 +262,7 @@ void run_dynamic_bench(const DynamicBenchOptions& o) {
                                     {"threads", threads},
                                     {"seed", o.seed},
                                     {"methods", o.methods},
-                                    {"embree_mode", embree_mode_name(kDefaultEmbreeMode)},
+                                    {"embree_mode", enum_name(kEmbreeModes, kDefaultEmbreeMode)},
                                     {"edacrt_params", "default preset"}}},
                                   {"scenes", scenes_json},
                                   {"results", rows_json},

@@ -17,15 +17,6 @@ constexpr std::uint32_t kLightStream = 0x5e91a0c3u;
 
 }  // namespace
 
-std::vector<std::string> ray_set_kind_names() { return {"camera", "diffuse", "ao", "shadow"}; }
-
-RaySetKind parse_ray_set_kind(const std::string& name) {
-    const std::vector<std::string> names = ray_set_kind_names();
-    for (std::size_t i = 0; i < names.size(); ++i)
-        if (names[i] == name) return RaySetKind(i);
-    throw InputError("unknown ray set '" + name + "' (known: camera, diffuse, ao, shadow)");
-}
-
 BenchRays::BenchRays(const Scene& scene, const Camera& camera, int width, int height,
                      std::uint32_t seed)
     : scene_(scene),

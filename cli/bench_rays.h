@@ -9,14 +9,16 @@
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "trace/tracer.h"
+#include "util/enum_table.h"
 
 namespace edacrt::cli {
 
 enum class RaySetKind { camera, diffuse, ao, shadow };
-
-/// "camera", "diffuse", "ao", "shadow"; parse throws InputError listing them.
-std::vector<std::string> ray_set_kind_names();
-RaySetKind parse_ray_set_kind(const std::string& name);
+inline constexpr auto kRaySetKinds = enum_table<RaySetKind>(
+    "ray set", {{RaySetKind::camera, "camera", "--spp jittered rays per pixel, closest hit"},
+                {RaySetKind::diffuse, "diffuse", "a cosine bounce from each camera hit, closest"},
+                {RaySetKind::ao, "ao", "diffuse, up to 5% of the diagonal, any hit"},
+                {RaySetKind::shadow, "shadow", "from each camera hit to a light, any hit"}});
 
 /// AO rays reach this fraction of the scene's diagonal.
 inline constexpr float kAoDistanceFraction = 0.05f;

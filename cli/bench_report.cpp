@@ -167,7 +167,7 @@ nlohmann::json row_json(const Row& row) {
     const Agreement& a = m.agreement;
     return {{"scene", row.run->scene},
             {"set", row.run->set},
-            {"query", row.run->query == Query::any ? "any" : "closest"},
+            {"query", enum_name(kQueries, row.run->query)},
             {"rays", row.run->rays},
             {"threads", row.run->threads},
             {"method", m.label},

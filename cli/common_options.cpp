@@ -3,6 +3,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "enum_flags.h"
 #include "progress.h"
 #include "scene/builtin_scenes.h"
 #include "stats_json.h"
@@ -17,14 +18,9 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
         .add_option("--scene", options.scene,
                     "OBJ file, or a built-in scene:\n" + builtin_scene_help())
         ->required();
-    std::string methods;
-    for (const std::string& name : method_names()) methods += (methods.empty() ? "" : "|") + name;
-    command.add_option("--method", options.method, "tracing method: " + methods)
-        ->capture_default_str();
-    command
-        .add_option("--embree-mode", options.embree_mode,
-                    "how embree takes rays: single|packet8|stream")
-        ->capture_default_str();
+    flags::add_enum_option(command, "--method", options.method, kMethods, "tracing method");
+    flags::add_enum_option(command, "--embree-mode", options.embree_mode, kEmbreeModes,
+                           "how embree takes rays");
     command.add_option("--threads", options.threads, "worker threads (0: all cores)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
@@ -88,8 +84,7 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
 }
 
 std::unique_ptr<Tracer> make_tracer(const CommonOptions& options) {
-    return edacrt::make_tracer(parse_method(options.method), options.edacrt,
-                               parse_embree_mode(options.embree_mode));
+    return edacrt::make_tracer(options.method, options.edacrt, options.embree_mode);
 }
 
 std::unique_ptr<tbb::global_control> apply_thread_limit(const CommonOptions& options) {

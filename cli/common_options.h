@@ -18,8 +18,8 @@ namespace edacrt::cli {
 
 struct CommonOptions {
     std::string scene;
-    std::string method = "edacrt";
-    std::string embree_mode{embree_mode_name(kDefaultEmbreeMode)};
+    Method method = Method::edacrt;
+    EmbreeMode embree_mode = kDefaultEmbreeMode;
     int threads = 0;  // 0: all hardware threads
     std::string stats_path;
     bool quiet = false;  // no progress output

@@ -6,6 +6,7 @@
 
 #include "camera_flags.h"
 #include "commands.h"
+#include "enum_flags.h"
 #include "render/default_camera.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
@@ -22,7 +23,6 @@ struct InfoOptions {
     std::string scene;
     bool json = false;
     RenderSettings settings;
-    std::string integrator = "path";
     int spp = 16;
     CameraOptions camera;
     InfoOptions() { settings.samples_per_pass = 4; }
@@ -62,17 +62,16 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
                                                   : "framing the bounds from +z";
 
     RenderSettings settings = o.settings;
-    settings.integrator = parse_integrator(o.integrator);
     settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
     validate(settings);
     // The renderer's state with a PNG written at the end, as `edacrt render` estimates it.
     const std::uint64_t renderer = render_memory_bytes(
         settings, sizeof(glm::vec3) + save_image_bytes_per_pixel(ImageFormat::png));
     nlohmann::json scene_bytes = nlohmann::json::object();
-    for (const std::string& name : method_names()) {
-        const auto tracer = make_tracer(parse_method(name));
+    for (const EnumEntry<Method>& method : kMethods) {
+        const auto tracer = make_tracer(method.value);
         tracer->set_scene(scene);
-        scene_bytes[name] = tracer->working_bytes();
+        scene_bytes[std::string(method.name)] = tracer->working_bytes();
     }
     return {{"scene", scene.source},
             {"triangles", s.triangles},
@@ -94,7 +93,7 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
             {"memory",
              {{"width", settings.width},
               {"height", settings.height},
-              {"integrator", o.integrator},
+              {"integrator", enum_name(kIntegrators, settings.integrator)},
               {"spp", o.spp},
               {"samples_per_pass", settings.samples_per_pass},
               {"renderer_bytes", renderer},
@@ -173,7 +172,8 @@ std::function<void()> add_info_command(CLI::App& app) {
     command->add_option("scene", o.scene, "OBJ file or builtin:NAME")->required();
     command->add_flag("--json", o.json, "print JSON instead of text (for scripts)");
     flags::add_image_size_options(*command, o.settings.width, o.settings.height);
-    command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
+    flags::add_enum_option(*command, "--integrator", o.settings.integrator, kIntegrators,
+                           "integrator");
     command->add_option("--spp", o.spp, "samples per pixel")
         ->check(CLI::Range(1, 1 << 20))
         ->capture_default_str();

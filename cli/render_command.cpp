@@ -14,6 +14,7 @@
 #include "camera_flags.h"
 #include "commands.h"
 #include "common_options.h"
+#include "enum_flags.h"
 #include "interrupt.h"
 #include "progress.h"
 #include "render/image_format.h"
@@ -32,17 +33,15 @@ struct RenderOptions {
     CommonOptions common;
     AnimationOptions animation;
     RenderSettings settings;
-    std::string integrator = "path";
-    std::string primary = "eye-light";
     int spp = 16;
     bool spp_given = false;
     double time_budget = 0.0;
     std::string reference;
     std::string out = "out/render.png";
     float exposure = 0.0f;
-    std::string tone_map = "clamp";
+    ToneMap tone_map = ToneMap::clamp;
     int jpeg_quality = 90;
-    std::string exr_pixel = "float";
+    ExrPixel exr_pixel = ExrPixel::single;
     std::vector<float> sky;
     CameraOptions camera;
     RenderOptions() { settings.samples_per_pass = 4; }
@@ -60,8 +59,8 @@ std::uint64_t command_bytes_per_pixel(const RenderOptions& o) {
 }
 
 int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
-                 ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
-                 AnimatedScene& animated, Tracer& tracer, Renderer& renderer, const Camera& camera);
+                 const std::optional<Image>& reference, AnimatedScene& animated, Tracer& tracer,
+                 Renderer& renderer, const Camera& camera);
 
 /// What an interrupted render wrote: `spp` samples per pixel of `frames[index]` (0: nothing),
 /// and the frames after it not rendered.
@@ -89,8 +88,6 @@ void run(RenderOptions o) {
     check_distinct_files({{"--out", o.out}, {"--stats", o.common.stats_path}},
                          {{"--reference", o.reference}});
     RenderSettings settings = o.settings;
-    settings.integrator = parse_integrator(o.integrator);
-    settings.primary = parse_primary_shading(o.primary);
     if (!o.time_budget_only())
         settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
     // Motion blur renders each pass at its own time of the shutter: passes of one sample.
@@ -98,8 +95,6 @@ void run(RenderOptions o) {
     if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
     validate(settings);
     check_render_memory(settings, command_bytes_per_pixel(o));
-    const ToneMap tone = parse_tone_map(o.tone_map);
-    const ExrPixel exr_pixel = parse_exr_pixel(o.exr_pixel);
     validate_exposure(o.exposure);
     if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
         throw InputError("--time-budget must be a finite number of seconds >= 0");
@@ -125,8 +120,8 @@ void run(RenderOptions o) {
     // Ctrl-C from here stops at the next batch and keeps the passes completed.
     keep_work_on_interrupt();
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        const int spp = render_frame(o, frames[i], settings, tone, exr_pixel, reference, animated,
-                                     *tracer, renderer, camera);
+        const int spp =
+            render_frame(o, frames[i], settings, reference, animated, *tracer, renderer, camera);
         if (interrupted()) throw Interrupted(interrupted_report(o, frames, i, spp));
     }
 }
@@ -135,12 +130,11 @@ void run(RenderOptions o) {
 /// taken by the tracer as --update says, then the passes, the image and the statistics.
 /// Returns the samples per pixel written: fewer when interrupted (none: nothing written).
 int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSettings& settings,
-                 ToneMap tone, ExrPixel exr_pixel, const std::optional<Image>& reference,
-                 AnimatedScene& animated, Tracer& tracer, Renderer& renderer,
-                 const Camera& camera) {
+                 const std::optional<Image>& reference, AnimatedScene& animated, Tracer& tracer,
+                 Renderer& renderer, const Camera& camera) {
     const Scene& scene = animated.scene;
     if (animated.animation) animated.animation->frame(frame.time, animated.scene);
-    const SceneUpdate how = parse_scene_update(o.animation.update);
+    const SceneUpdate how = o.animation.update;
     const UpdateStats update = tracer.update_scene(scene, how);
     const double prepare_seconds = update.seconds;
     renderer.scene_changed(scene);
@@ -203,25 +197,25 @@ int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSett
     if (renderer.film().passes() == 0) return 0;  // interrupted before the first pass ended
 
     // A temporary only: the image is gone before the statistics trace below.
+    const std::string method(enum_name(kMethods, tracer.method()));
+    const std::string integrator(enum_name(kIntegrators, settings.integrator));
     save_image(
         frame.out, renderer.film().mean(),
-        {o.exposure, tone, o.jpeg_quality, exr_pixel,
-         render_metadata({"edacrt render", scene.source, std::string(method_name(tracer.method())),
-                          o.integrator, renderer.film().passes(), settings.seed, render_seconds,
-                          camera})});
+        {o.exposure, o.tone_map, o.jpeg_quality, o.exr_pixel,
+         render_metadata({"edacrt render", scene.source, method, integrator,
+                          renderer.film().passes(), settings.seed, render_seconds, camera})});
 
     const PassStats& total = renderer.total();
     const double mrays = double(total.trace.rays) / total.trace_seconds * 1e-6;
     if (animated.animation)
-        std::cout << "frame " << frame.index << " (t = " << frame.time
-                  << " s): " << method_name(tracer.method()) << " " << update_work_name(update.work)
-                  << " in " << update.seconds * 1e3 << " ms; ";
+        std::cout << "frame " << frame.index << " (t = " << frame.time << " s): " << method << " "
+                  << enum_name(kUpdateWorks, update.work) << " in " << update.seconds * 1e3
+                  << " ms; ";
     std::cout << "rendered " << settings.width << "x" << settings.height << " at "
-              << renderer.film().passes() << " spp (" << o.integrator << ") with "
-              << method_name(tracer.method()) << " in " << render_seconds
-              << " s: " << total.trace.rays << " rays in " << total.batches << " batches traced in "
-              << total.trace_seconds << " s (" << mrays << " Mrays/s), written to " << frame.out
-              << "\n";
+              << renderer.film().passes() << " spp (" << integrator << ") with " << method << " in "
+              << render_seconds << " s: " << total.trace.rays << " rays in " << total.batches
+              << " batches traced in " << total.trace_seconds << " s (" << mrays
+              << " Mrays/s), written to " << frame.out << "\n";
     if (total.dropped_samples)
         std::cerr << "edacrt: warning: " << total.dropped_samples
                   << " non-finite samples were replaced by black\n";
@@ -230,8 +224,8 @@ int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSett
         {"command", "render"},
         {"scene", scene.source},
         {"triangles", scene.triangle_count()},
-        {"method", method_name(tracer.method())},
-        {"integrator", o.integrator},
+        {"method", method},
+        {"integrator", integrator},
         {"width", settings.width},
         {"height", settings.height},
         {"spp", renderer.film().passes()},
@@ -241,13 +235,15 @@ int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSett
         {"ray_box_tests", total.trace.ray_box_tests},
         {"ray_triangle_tests", total.trace.ray_triangle_tests},
         {"prepare_seconds", prepare_seconds},
-        {"scene_update", {{"mode", o.animation.update}, {"work", update_work_name(update.work)}}},
+        {"scene_update",
+         {{"mode", enum_name(kSceneUpdates, how)}, {"work", enum_name(kUpdateWorks, update.work)}}},
         {"trace_seconds", total.trace_seconds},
         {"render_seconds", render_seconds},
         {"mrays_per_second", mrays},
         {"dropped_samples", total.dropped_samples},
         {"passes", passes}};
-    if (tracer.method() == Method::embree) stats["embree_mode"] = o.common.embree_mode;
+    if (tracer.method() == Method::embree)
+        stats["embree_mode"] = enum_name(kEmbreeModes, o.common.embree_mode);
     if (animated.animation) {
         stats["animation"] = animated.animation->spec();
         stats["time"] = frame.time;
@@ -281,9 +277,8 @@ std::function<void()> add_render_command(CLI::App& app) {
     add_common_options(*command, o.common);
     RenderSettings& s = o.settings;
     flags::add_image_size_options(*command, s.width, s.height);
-    command->add_option("--integrator", o.integrator, "primary|ao|path")->capture_default_str();
-    command->add_option("--primary", o.primary, "primary shading: eye-light|normal|albedo|depth")
-        ->capture_default_str();
+    flags::add_enum_option(*command, "--integrator", s.integrator, kIntegrators, "integrator");
+    flags::add_enum_option(*command, "--primary", s.primary, kPrimaryShadings, "primary shading");
     command
         ->add_option_function<int>(
             "--spp",
@@ -296,7 +291,7 @@ std::function<void()> add_render_command(CLI::App& app) {
     command->add_option("--time-budget", o.time_budget,
                         "stop after this many seconds of rendering (0: no limit)");
     command->add_option("--reference", o.reference,
-                        "an image of the same size (" + image_extensions() +
+                        "an image of the same size (" + enum_names(kImageFormats) +
                             "): report the error after every pass");
     command->add_option("--max-depth", s.max_depth, "path: bounces")->capture_default_str();
     command->add_option("--roulette-depth", s.roulette_depth, "path: Russian roulette from here")
@@ -318,20 +313,16 @@ std::function<void()> add_render_command(CLI::App& app) {
     command->add_option("--seed", s.seed, "sample seed")->capture_default_str();
     command->add_option("--exposure", o.exposure, "PNG, JPEG: exposure in stops")
         ->capture_default_str();
-    command->add_option("--tone-map", o.tone_map, "PNG, JPEG: clamp|reinhard|aces")
-        ->capture_default_str();
+    flags::add_enum_option(*command, "--tone-map", o.tone_map, kToneMaps,
+                           "PNG, JPEG: how radiance becomes display values");
     command->add_option("--jpeg-quality", o.jpeg_quality, "JPEG: quality")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
-    command
-        ->add_option("--exr-pixel", o.exr_pixel,
-                     "EXR: half (16-bit, as compositors default to) or float (32-bit, exact)")
-        ->capture_default_str();
+    flags::add_enum_option(*command, "--exr-pixel", o.exr_pixel, kExrPixels, "EXR: pixel type");
     command
         ->add_option("--out", o.out,
-                     "output image; its extension chooses the format: .png, .jpg/.jpeg (8-bit "
-                     "sRGB, tone-mapped), .hdr (Radiance RGBE), .pfm (float), .exr (OpenEXR "
-                     "with the render's settings in its header)")
+                     flags::enum_option_help("output image; its extension chooses the format",
+                                             kImageFormats))
         ->capture_default_str();
     flags::add_camera_options(*command, o.camera);
     add_animation_options(*command, o.animation);

@@ -23,18 +23,18 @@ void run(const TraceOptions& o) {
     const auto threads = apply_thread_limit(o.common);
     check_distinct_files({{"--out", o.out_path}, {"--stats", o.common.stats_path}},
                          {{"--rays", o.rays_path}});
-    const Method method = parse_method(o.common.method);
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     const std::vector<Ray> rays = read_rays(o.rays_path);
     const Scene scene = load_scene_verbose(o.common.scene);
 
     // One batch: its fraction is unknown until it ends, so a terminal shows time passing.
     Progress progress(progress_style(o.common.quiet), "trace", Progress::Unit::rays);
-    progress.begin("set_scene (" + o.common.method + ")");
+    const std::string method(enum_name(kMethods, o.common.method));
+    progress.begin("set_scene (" + method + ")");
     auto start = std::chrono::steady_clock::now();
     tracer->set_scene(scene);
     const double prepare_seconds = seconds_since(start);
-    progress.step(-1.0, 0.0, "prepared " + o.common.method);
+    progress.step(-1.0, 0.0, "prepared " + method);
 
     std::vector<Hit> hits(rays.size());
     progress.begin("tracing " + std::to_string(rays.size()) + " rays");
@@ -49,16 +49,16 @@ void run(const TraceOptions& o) {
     const auto hit_count =
         std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.hit(); });
     const double mrays = double(rays.size()) / trace_seconds * 1e-6;
-    std::cout << "traced " << rays.size() << " rays (" << (o.any_hit ? "any hit" : "closest hit")
-              << ") with " << method_name(method) << " in " << trace_seconds << " s: " << mrays
-              << " Mrays/s; " << hit_count << " hits; prepare " << prepare_seconds << " s\n";
+    std::cout << "traced " << rays.size() << " rays (" << enum_name(kQueries, query) << " hit"
+              << ") with " << method << " in " << trace_seconds << " s: " << mrays << " Mrays/s; "
+              << hit_count << " hits; prepare " << prepare_seconds << " s\n";
 
     nlohmann::json stats_json = {{"command", "trace"},
                                  {"scene", scene.source},
                                  {"triangles", scene.triangle_count()},
-                                 {"method", method_name(method)},
-                                 {"embree_mode", o.common.embree_mode},
-                                 {"query", o.any_hit ? "any" : "closest"},
+                                 {"method", method},
+                                 {"embree_mode", enum_name(kEmbreeModes, o.common.embree_mode)},
+                                 {"query", enum_name(kQueries, query)},
                                  {"rays", stats.rays},
                                  {"hits", hit_count},
                                  {"ray_box_tests", stats.ray_box_tests},

@@ -34,6 +34,9 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
         std::cerr << app.get_name() << ": error: " << what << "\nrun '" << command
                   << " --help' for the options\n";
         return kExitUsageError;
+    } catch (const InputError& e) {
+        std::cerr << app.get_name() << ": error: " << printable(e.what()) << "\n";
+        return kExitInputError;
     }
 }
 

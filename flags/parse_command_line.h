@@ -2,7 +2,8 @@
 // Command-line parsing and errors as both tools (edacrt, edacrt_viewer) report them: --help
 // and --version print to stdout and exit 0; a usage error prints one line "TOOL: error: WHAT"
 // and a hint on stderr, and exits 2 (CLI11_PARSE would print its own two lines and exit 105 to
-// 114); bad input exits 1, a bug 70.
+// 114); bad input exits 1 (also a flag's value refused while parsing, such as an unknown name of
+// an enum flag), a bug 70.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <optional>
@@ -17,7 +18,8 @@ constexpr int kExitInternalError = 70;  // sysexits' EX_SOFTWARE: a bug, not the
 
 /// Adds --version ("TOOL VERSION", the CMake project's version) to `app` and parses the
 /// command line; returns the exit status when the program should stop here, nullopt when it
-/// should go on.
+/// should go on. An InputError thrown by a flag's callback is reported as run_reporting_errors()
+/// reports it.
 std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv);
 
 /// Runs `work` and returns its exit status, or reports what it threw on stderr, escaped:

@@ -140,8 +140,8 @@ TEST(SceneUpdates, OtherTopologyIsRebuiltAndSaidSo) {
         if (m == Method::embree) continue;
 #endif
         for (const SceneUpdate how : {SceneUpdate::refit, SceneUpdate::dynamic}) {
-            const std::string label =
-                std::string(method_name(m)) + " " + std::string(scene_update_name(how));
+            const std::string label = std::string(enum_name(kMethods, m)) + " " +
+                                      std::string(enum_name(kSceneUpdates, how));
             const UpdateWork kept =
                 how == SceneUpdate::refit ? UpdateWork::refitted : UpdateWork::rebuilt;
             const auto tracer = make_tracer(m);

@@ -1,10 +1,17 @@
-// The generic enum table helpers (util/enum_table.h) format as the messages and help texts
-// expect.
+// Every enum's table (util/enum_table.h) round-trips and refuses unknown names with the known
+// ones; the generic helpers format as the messages and help texts expect.
 #include "util/enum_table.h"
 
 #include <gtest/gtest.h>
 
+#include "../cli/bench_rays.h"  // the edacrt tool's ray sets: only the table, defined inline
 #include "enum_table_checks.h"
+#include "render/exr_image.h"
+#include "render/film.h"
+#include "render/image_format.h"
+#include "render/render_settings.h"
+#include "trace/edacrt_params.h"
+#include "trace/tracer.h"
 
 namespace edacrt {
 namespace {
@@ -27,6 +34,62 @@ TEST(EnumTable, HelpersFormatAsMessagesAndHelpTextsExpect) {
     EXPECT_EQ(enum_name_list(kColours), (std::vector<std::string>{"red", "green", "blue"}));
     EXPECT_EQ(enum_name_array(kColours)[2], "blue");
     test::expect_enum_table(kColours);
+}
+
+TEST(EnumTable, AliasesReadBackAsTheirValueAndPrintAsTheFirstName) {
+    EXPECT_EQ(parse_enum(kImageFormats, ".jpeg"), ImageFormat::jpg);
+    EXPECT_EQ(enum_name(kImageFormats, ImageFormat::jpg), ".jpg");
+    EXPECT_FALSE(in_enum_order(kImageFormats));
+}
+
+TEST(EnumTable, EveryTableRoundTripsAndRefusesUnknownNames) {
+    test::expect_enum_table(kMethods);
+    test::expect_enum_table(kEmbreeModes);
+    test::expect_enum_table(kQueries);
+    test::expect_enum_table(kSceneUpdates);
+    test::expect_enum_table(kUpdateWorks);
+    test::expect_enum_table(kIntegrators);
+    test::expect_enum_table(kPrimaryShadings);
+    test::expect_enum_table(kToneMaps);
+    test::expect_enum_table(kExrPixels);
+    test::expect_enum_table(kImageFormats);
+    test::expect_enum_table(kHitRatios);
+    test::expect_enum_table(kTraversalOrders);
+    test::expect_enum_table(kFilterSkips);
+    test::expect_enum_table(kSmallNodes);
+    test::expect_enum_table(kBinnings);
+    test::expect_enum_table(kSecondChildren);
+    test::expect_enum_table(cli::kRaySetKinds);
+}
+
+TEST(EnumTable, MessagesAreTheOnesTheToolsPrint) {
+    EXPECT_EQ(unknown_enum_message(kMethods, "magic"),
+              "unknown method 'magic' (known: edacrt, dacrt, bvh, embree, naive)");
+    EXPECT_EQ(unknown_enum_message(kSceneUpdates, "sideways"),
+              "unknown scene update 'sideways' (known: rebuild, dynamic, refit)");
+    EXPECT_EQ(unknown_enum_message(kIntegrators, "magic"),
+              "unknown integrator 'magic' (known: primary, ao, path)");
+}
+
+/// The EDACRT parameter table's choices are the enum tables' names, in enum order.
+TEST(EnumTable, ParameterChoicesComeFromTheTables) {
+    const auto choices = [](std::string_view key) {
+        const ParamInfo* info = find_param(key);
+        EXPECT_NE(info, nullptr) << key;
+        return std::vector<std::string>(info->choices.begin(), info->choices.end());
+    };
+    EXPECT_EQ(choices("hit-ratio"), enum_name_list(kHitRatios));
+    EXPECT_EQ(choices("order"), enum_name_list(kTraversalOrders));
+    EXPECT_EQ(choices("filter-skip"), enum_name_list(kFilterSkips));
+    EXPECT_EQ(choices("small-nodes"), enum_name_list(kSmallNodes));
+    EXPECT_EQ(choices("binning"), enum_name_list(kBinnings));
+    EXPECT_EQ(choices("second-child"), enum_name_list(kSecondChildren));
+    for (const auto& entry : kSecondChildren) {
+        EdacrtParams params;
+        set_param(params, *find_param("second-child"), entry.name);
+        EXPECT_EQ(params.second_child, entry.value);
+        EXPECT_EQ(param_text(params, *find_param("second-child")), entry.name);
+    }
 }
 
 }  // namespace

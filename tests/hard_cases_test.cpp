@@ -78,10 +78,10 @@ struct Candidate {
 std::vector<Candidate> all_methods() {
     std::vector<Candidate> out;
     for (const Method m : {Method::naive, Method::edacrt, Method::dacrt, Method::bvh})
-        out.push_back({std::string(method_name(m)), [m] { return make_tracer(m); }});
+        out.push_back({std::string(enum_name(kMethods, m)), [m] { return make_tracer(m); }});
 #ifdef EDACRT_HAS_EMBREE
     for (const EmbreeMode mode : {EmbreeMode::single, EmbreeMode::packet8, EmbreeMode::stream})
-        out.push_back({"embree " + std::string(embree_mode_name(mode)),
+        out.push_back({"embree " + std::string(enum_name(kEmbreeModes, mode)),
                        [mode] { return make_tracer(Method::embree, {}, mode); }});
 #endif
     return out;

@@ -109,8 +109,8 @@ TEST(Determinism, SameSeedSameImageForAnyThreadCountAndMethod) {
                 const Image image = render_cornell(method, integrator, 7, 4);
                 // Bit for bit: the same samples, the same hits, the same sums.
                 EXPECT_TRUE(image.pixels == reference.pixels)
-                    << method_name(method) << ", " << threads << " threads, "
-                    << integrator_name(integrator);
+                    << enum_name(kMethods, method) << ", " << threads << " threads, "
+                    << enum_name(kIntegrators, integrator);
             }
         }
     }
@@ -136,7 +136,7 @@ TEST(Determinism, PassesOfSeveralSamplesGiveTheImageOfOneSamplePasses) {
         EXPECT_TRUE(renderer.render_pass(nullptr, nullptr, 3));  // 4-6
         EXPECT_EQ(renderer.film().passes(), 7);
         EXPECT_TRUE(renderer.film().mean().pixels == one_by_one.pixels)
-            << integrator_name(integrator);
+            << enum_name(kIntegrators, integrator);
         EXPECT_THROW(renderer.render_pass(nullptr, nullptr, 4), std::invalid_argument);
     }
     RenderSettings bad;
@@ -243,12 +243,14 @@ TEST_P(SelfIntersection, GrazingRaysNeverHitTheirOwnTriangle) {
         tracer->trace(outward, hits, Query::closest);
         for (std::size_t i = 0; i < hits.size(); ++i)
             ASSERT_FALSE(hits[i].hit())
-                << method_name(tracer->method()) << " outward ray " << i << " hit triangle "
+                << enum_name(kMethods, tracer->method()) << " outward ray " << i << " hit triangle "
                 << hits[i].prim << " at t " << hits[i].t << " (own " << own[i] << ")";
         tracer->trace(inward, hits, Query::closest);
         for (std::size_t i = 0; i < hits.size(); ++i) {
-            ASSERT_TRUE(hits[i].hit()) << method_name(tracer->method()) << " inward ray " << i;
-            ASSERT_NE(hits[i].prim, own[i]) << method_name(tracer->method()) << " inward ray " << i;
+            ASSERT_TRUE(hits[i].hit())
+                << enum_name(kMethods, tracer->method()) << " inward ray " << i;
+            ASSERT_NE(hits[i].prim, own[i])
+                << enum_name(kMethods, tracer->method()) << " inward ray " << i;
         }
     }
 }

@@ -133,7 +133,7 @@ TEST(TraceStats, NaiveAndBvhFillPerRayCounts) {
     const Scene scene = make_builtin_scene("builtin:sphere:subdiv=3");
     for (const Method method : {Method::naive, Method::bvh}) {
         const auto tracer = make_tracer(method);
-        expect_consistent(*tracer, scene, Query::closest, std::string(method_name(method)));
+        expect_consistent(*tracer, scene, Query::closest, std::string(enum_name(kMethods, method)));
     }
 }
 

@@ -12,10 +12,10 @@ namespace {
 
 TEST(TracerContract, OneHitPerRayOrInvalidArgument) {
     const Scene scene = make_builtin_scene("builtin:cornell");
-    for (const std::string& name : method_names()) {
+    for (const auto& [method, name, help] : kMethods) {
         std::unique_ptr<Tracer> tracer;
         try {
-            tracer = make_tracer(parse_method(name));
+            tracer = make_tracer(method);
         } catch (const std::exception&) {
             continue;  // embree in a build without it
         }

@@ -182,7 +182,9 @@ std::vector<Method> methods() {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryMethod, TracerThreads, ::testing::ValuesIn(methods()),
-                         [](const auto& info) { return std::string(method_name(info.param)); });
+                         [](const auto& info) {
+                             return std::string(enum_name(kMethods, info.param));
+                         });
 
 }  // namespace
 }  // namespace edacrt

@@ -223,7 +223,7 @@ std::vector<Method> refit_methods() {
 
 TEST(RenderWorker, AnimationFramesAreRefittedAndRenderAsIfRebuilt) {
     for (Method method : refit_methods()) {
-        SCOPED_TRACE(std::string(method_name(method)));
+        SCOPED_TRACE(std::string(enum_name(kMethods, method)));
         const auto pool = wave_pool();
         RenderWorker worker;
         auto first = finished(worker, worker.submit(animated_request(pool, 0.2, method)));
@@ -302,7 +302,7 @@ TEST(CompareMethods, AnAnimationFrameAlsoComparesRefitAndDynamicUpdates) {
             continue;
         }
 #endif
-        EXPECT_EQ(m.error, "") << method_name(m.method);
+        EXPECT_EQ(m.error, "") << enum_name(kMethods, m.method);
         EXPECT_EQ(m.stats.rays, 24u * 16u);
         EXPECT_GT(m.seconds, 0.0);
         EXPECT_LE(m.update_seconds, m.seconds);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "bookmarks.h"
+#include "enum_table_checks.h"
 #include "heatmap.h"
 #include "orbit_camera.h"
 #include "render_worker.h"
@@ -318,4 +319,10 @@ TEST(Script, BookmarkSavesTheViewToTheBookmarksFile) {
 }
 
 }  // namespace
+// The script's view names (view NAME) are the table's; the heat map tab shows their help.
+TEST(ViewNames, RoundTripAndRefuseUnknownNames) {
+    test::expect_enum_table(kViews);
+    EXPECT_EQ(parse_enum_or_throw(kViews, "box"), View::box_tests);
+}
+
 }  // namespace edacrt::app

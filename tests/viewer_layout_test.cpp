@@ -239,8 +239,8 @@ TEST(Settings, ScriptSettingsReachTheStateAndBadOnesAreRefused) {
     EXPECT_THROW(apply_setting(s, "bins", "1e9"), InputError);
     EXPECT_THROW(apply_setting(s, "spp", "many"), InputError);
     EXPECT_THROW(apply_setting(s, "no-such-key", "1"), InputError);
-    EXPECT_EQ(parse_view("depth"), View::depth);
-    EXPECT_THROW(parse_view("x-ray"), InputError);
+    EXPECT_EQ(parse_enum_or_throw(kViews, "depth"), View::depth);
+    EXPECT_THROW(parse_enum_or_throw(kViews, "x-ray"), InputError);
 }
 
 }  // namespace

@@ -48,8 +48,8 @@ void expect_no_misses(const std::string& spec, float inside_radius) {
     if (inside_radius > 0.0f)
         for (int i = 0; i < 4; ++i) insides.emplace_back(coord(rng), coord(rng), coord(rng));
 
-    for (const std::string& name : method_names()) {
-        const auto tracer = make_tracer(parse_method(name));
+    for (const auto& [method, name, help] : kMethods) {
+        const auto tracer = make_tracer(method);
         tracer->set_scene(scene);
         for (const glm::vec3& inside : insides) {
             const std::vector<Ray> rays = rays_through(targets, inside);

@@ -35,15 +35,10 @@ void draw_animation_settings(ViewerState& s) {
         if (ImGui::Button("Apply")) load_into(s, s.scene_path, {}, s.animation_field, true);
     }
     if (!p.frames) return;
-    int update = int(p.update);
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
-    if (ImGui::Combo("update", &update, "rebuild\0dynamic\0refit\0"))
-        p.update = SceneUpdate(update);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "how bvh and embree take each new frame: rebuild from scratch, a dynamic\n"
-            "Embree scene committed at low quality, or refit the boxes of the tree kept.\n"
-            "edacrt, dacrt and naive keep no structure: nothing to update.");
+    enum_combo("update", p.update, kSceneUpdates);
+    wrapped_tooltip("how the tracer takes each new frame: " + enum_help(kSceneUpdates) +
+                    ". edacrt, dacrt and naive keep no structure: nothing to update.");
     int scale = p.play_scale == 1 ? 0 : p.play_scale == 2 ? 1 : 2;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12.0f);
     if (ImGui::Combo("while playing", &scale,

@@ -67,9 +67,9 @@ void chart(const std::vector<Playback::FrameTime>& history, float width, float h
             std::min(n - 1, std::size_t(std::max(0.0f, x / width * float(n - 1) + 0.5f)));
         const auto& f = history[i];
         ImGui::SetTooltip("t = %.3f s, %s at %dx%d: update (%s) %.2f ms + first pass %.2f ms",
-                          f.time, std::string(method_name(f.method)).c_str(), f.width, f.height,
-                          std::string(update_work_name(f.work)).c_str(), f.update_seconds * 1e3,
-                          f.pass_seconds * 1e3);
+                          f.time, std::string(enum_name(kMethods, f.method)).c_str(), f.width,
+                          f.height, std::string(enum_name(kUpdateWorks, f.work)).c_str(),
+                          f.update_seconds * 1e3, f.pass_seconds * 1e3);
     }
 }
 
@@ -99,16 +99,17 @@ void draw_frames_tab(ViewerState& s) {
         ImGui::TextWrapped(
             "last: t = %.3f s, %s at %dx%d, update %s %.2f ms + pass %.2f ms; mean "
             "of the last %zu like it: %.2f ms",
-            last.time, std::string(method_name(last.method)).c_str(), last.width, last.height,
-            std::string(update_work_name(last.work)).c_str(), last.update_seconds * 1e3,
-            last.pass_seconds * 1e3, count, sum / double(count) * 1e3);
+            last.time, std::string(enum_name(kMethods, last.method)).c_str(), last.width,
+            last.height, std::string(enum_name(kUpdateWorks, last.work)).c_str(),
+            last.update_seconds * 1e3, last.pass_seconds * 1e3, count, sum / double(count) * 1e3);
     }
     // The legend: the methods in the chart.
-    for (Method m : {Method::edacrt, Method::dacrt, Method::bvh, Method::embree, Method::naive})
+    for (const EnumEntry<Method>& m : kMethods)
         if (std::any_of(p.history.begin(), p.history.end(),
-                        [&](const auto& f) { return f.method == m; })) {
-            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(method_colour(m)));
-            ImGui::TextUnformatted(std::string(method_name(m)).c_str());
+                        [&](const auto& f) { return f.method == m.value; })) {
+            ImGui::PushStyleColor(ImGuiCol_Text,
+                                  ImGui::ColorConvertU32ToFloat4(method_colour(m.value)));
+            ImGui::TextUnformatted(std::string(m.name).c_str());
             ImGui::PopStyleColor();
             ImGui::SameLine();
         }

@@ -11,8 +11,9 @@ namespace edacrt::app {
 
 void draw_heatmap_tab(ViewerState& s, float heat_max) {
     ImGui::TextDisabled("per pixel, the first pass's camera rays (the Statistics tab's batch)");
-    for (View view : kViews) {
-        if (ImGui::RadioButton(std::string(view_name(view)).c_str(), s.view == view)) s.view = view;
+    for (const EnumEntry<View>& view : kViews) {
+        if (ImGui::RadioButton(std::string(view.help).c_str(), s.view == view.value))
+            s.view = view.value;
         ImGui::SameLine();
     }
     ImGui::Checkbox("logarithmic", &s.heat_log);

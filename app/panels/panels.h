@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "util/enum_table.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -36,6 +37,25 @@ void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const 
                       unsigned colour, float thickness = 1.0f);
 /// Where image pixel (x, y) of a width x height image appears in the window.
 ImVec2 image_to_window(const ViewerState& state, float x, float y, int width, int height);
+
+/// A combo box of an enum's names (util/enum_table.h), each with its help as a tooltip.
+/// Returns true when the user chose another value.
+template <typename E, std::size_t N>
+bool enum_combo(const char* label, E& value, const EnumTable<E, N>& table) {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, std::string(enum_name(table, value)).c_str())) {
+        for (const EnumEntry<E>& entry : table) {
+            if (ImGui::Selectable(std::string(entry.name).c_str(), entry.value == value)) {
+                changed = entry.value != value;
+                value = entry.value;
+            }
+            if (!entry.help.empty() && ImGui::IsItemHovered())
+                ImGui::SetTooltip("%.*s", int(entry.help.size()), entry.help.data());
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
 
 /// A tooltip for the last item, wrapped at a readable width.
 void wrapped_tooltip(const std::string& text);

@@ -116,7 +116,7 @@ void draw_recursion_tab(ViewerState& s) {
             ImGui::TextWrapped("%s", a->error.c_str());
         else if (a)
             ImGui::TextDisabled("(%s records no recursion)",
-                                std::string(method_name(a->method)).c_str());
+                                std::string(enum_name(kMethods, a->method)).c_str());
         return;
     }
     if (s.analysis_stale) {

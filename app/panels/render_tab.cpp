@@ -15,28 +15,6 @@
 namespace edacrt::app {
 namespace {
 
-template <typename Enum, std::size_t N>
-bool combo(const char* label, Enum& value, const Enum (&options)[N],
-           std::string_view (*name)(Enum)) {
-    bool changed = false;
-    if (ImGui::BeginCombo(label, std::string(name(value)).c_str())) {
-        for (Enum option : options)
-            if (ImGui::Selectable(std::string(name(option)).c_str(), option == value)) {
-                changed = option != value;
-                value = option;
-            }
-        ImGui::EndCombo();
-    }
-    return changed;
-}
-
-constexpr Method kMethods[] = {Method::edacrt, Method::dacrt, Method::bvh, Method::embree,
-                               Method::naive};
-constexpr Integrator kIntegrators[] = {Integrator::primary, Integrator::ao, Integrator::path};
-constexpr PrimaryShading kShadings[] = {PrimaryShading::eye_light, PrimaryShading::normal,
-                                        PrimaryShading::albedo, PrimaryShading::depth};
-constexpr EmbreeMode kEmbreeModes[] = {EmbreeMode::single, EmbreeMode::packet8, EmbreeMode::stream};
-
 void tooltip(const char* text) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
@@ -46,18 +24,12 @@ void tooltip(const char* text) {
 void draw_render_tab(ViewerState& s) {
     UiSettings& ui = s.ui;
     ImGui::PushItemWidth(-ImGui::CalcTextSize("resolution").x - ImGui::GetStyle().ItemSpacing.x);
-    combo("method", ui.method, kMethods, method_name);
-    tooltip(
-        "how rays are traced: edacrt (Nabata 2013), dacrt (Afra 2012), bvh (binned SAH, rebuilt "
-        "per frame), embree, naive (every triangle)");
-    if (ui.method == Method::embree)
-        combo("embree mode", ui.embree_mode, kEmbreeModes, embree_mode_name);
-    combo("integrator", ui.integrator, kIntegrators, integrator_name);
-    tooltip(
-        "primary: camera rays only (debug shading); ao: ambient occlusion; path: path tracing with "
-        "next-event estimation");
-    if (ui.integrator == Integrator::primary)
-        combo("shading", ui.primary, kShadings, primary_shading_name);
+    enum_combo("method", ui.method, kMethods);
+    wrapped_tooltip("how rays are traced: " + enum_help(kMethods));
+    if (ui.method == Method::embree) enum_combo("embree mode", ui.embree_mode, kEmbreeModes);
+    enum_combo("integrator", ui.integrator, kIntegrators);
+    wrapped_tooltip("integrator: " + enum_help(kIntegrators));
+    if (ui.integrator == Integrator::primary) enum_combo("shading", ui.primary, kPrimaryShadings);
     if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
     tooltip("path: bounces after the camera ray");
     if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
@@ -88,7 +60,7 @@ void draw_render_tab(ViewerState& s) {
     ImGui::Separator();
     ImGui::SliderFloat("exposure", &s.exposure, -8.0f, 8.0f, "%.1f stops");
     tooltip("display only: radiance times 2^stops before tone mapping");
-    ImGui::Combo("tone map", &s.tone_map, "clamp\0Reinhard\0ACES\0");
+    enum_combo("tone map", s.tone_map, kToneMaps);
     tooltip("display only: how radiance above 1 is compressed");
     ImGui::PopItemWidth();
 
@@ -104,7 +76,7 @@ void draw_render_tab(ViewerState& s) {
         ImGui::SetTooltip(
             "the render's linear radiance as float OpenEXR, with the method, spp and camera in "
             "its header (the script's save-linear FILE takes %s)",
-            image_extensions().c_str());
+            enum_names(kImageFormats).c_str());
     ImGui::SetNextItemWidth(-ImGui::CalcTextSize("folder").x - ImGui::GetStyle().ItemSpacing.x);
     ImGui::InputText("folder", &s.save_dir);
     if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());

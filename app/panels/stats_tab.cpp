@@ -70,11 +70,12 @@ void draw_comparison(ViewerState& s) {
     for (const MethodTotals& m : s.comparison) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        cell_text("%s", std::string(method_name(m.method)).c_str());
+        cell_text("%s", std::string(enum_name(kMethods, m.method)).c_str());
         ImGui::TableNextColumn();
         // Methods without a structure have nothing to refit: their update is per-frame data.
         const bool structure = m.method == Method::bvh || m.method == Method::embree;
-        cell_text("%s", structure ? std::string(scene_update_name(m.update)).c_str() : "none");
+        cell_text("%s",
+                  structure ? std::string(enum_name(kSceneUpdates, m.update)).c_str() : "none");
         ImGui::TableNextColumn();
         if (!m.error.empty()) {
             cell_text("%s", m.error.c_str());
@@ -113,7 +114,7 @@ void draw_stats_tab(ViewerState& s) {
     }
     const double rays = double(std::max<std::size_t>(detail->rays.size(), 1));
     ImGui::Text("%s: the first pass's %zu camera rays (%dx%d, 1 per pixel), one batch",
-                std::string(method_name(s.submitted.method)).c_str(), detail->rays.size(),
+                std::string(enum_name(kMethods, s.submitted.method)).c_str(), detail->rays.size(),
                 s.frame->image.width, s.frame->image.height);
     ImGui::Text("%.1f ray-box and %.1f ray-triangle tests per ray", double(box) / rays,
                 double(tri) / rays);
@@ -122,7 +123,7 @@ void draw_stats_tab(ViewerState& s) {
                     static_cast<unsigned long long>(detail->root.entered));
     if (levels.empty()) {
         ImGui::TextDisabled("(%s has no recursion levels)",
-                            std::string(method_name(s.ui.method)).c_str());
+                            std::string(enum_name(kMethods, s.ui.method)).c_str());
     } else {
         const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |

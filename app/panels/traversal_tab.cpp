@@ -34,7 +34,7 @@ void draw_traversal_tab(ViewerState& s) {
                              : "no hit");
     if (visits.empty()) {
         ImGui::TextDisabled("(%s records no recursion, or the ray missed the scene's box)",
-                            std::string(method_name(a->method)).c_str());
+                            std::string(enum_name(kMethods, a->method)).c_str());
         return;
     }
     // The path to the leaf of the final hit: the last leaf where the hit changed, then up.

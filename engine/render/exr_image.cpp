@@ -46,16 +46,6 @@ constexpr int kMaxSide = 65536;
 
 }  // namespace
 
-ExrPixel parse_exr_pixel(std::string_view name) {
-    if (name == "half") return ExrPixel::half;
-    if (name == "float") return ExrPixel::single;
-    throw InputError("unknown EXR pixel type '" + std::string(name) + "' (half, float)");
-}
-
-std::string_view exr_pixel_name(ExrPixel pixel) {
-    return pixel == ExrPixel::half ? "half" : "float";
-}
-
 void write_exr(const std::filesystem::path& path, const Image& image, ExrPixel pixel,
                const ImageMetadata& metadata) {
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "pixels are read with a 12-byte stride");

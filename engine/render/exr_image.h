@@ -7,14 +7,16 @@
 #include <vector>
 
 #include "render/image.h"
+#include "util/enum_table.h"
 
 namespace edacrt {
 
 /// How an EXR stores a channel: half (16-bit, what compositors default to; values beyond 65504
 /// become infinite) or float (32-bit, exact).
 enum class ExrPixel { half, single };
-ExrPixel parse_exr_pixel(std::string_view name);  // "half" | "float"; throws InputError
-std::string_view exr_pixel_name(ExrPixel pixel);
+inline constexpr auto kExrPixels = enum_table<ExrPixel>(
+    "EXR pixel type", {{ExrPixel::half, "half", "16-bit, as compositors default to"},
+                       {ExrPixel::single, "float", "32-bit, exact"}});
 
 /// Name and value pairs, kept in order; EXR writes each as a string attribute of the header.
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;

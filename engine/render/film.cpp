@@ -74,11 +74,4 @@ Image tone_map(Image image, float exposure_ev, ToneMap op) {
     return image;
 }
 
-ToneMap parse_tone_map(std::string_view name) {
-    if (name == "clamp") return ToneMap::clamp;
-    if (name == "reinhard") return ToneMap::reinhard;
-    if (name == "aces") return ToneMap::aces;
-    throw InputError("unknown tone map '" + std::string(name) + "' (known: clamp, reinhard, aces)");
-}
-
 }  // namespace edacrt

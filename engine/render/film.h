@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/image.h"
+#include "util/enum_table.h"
 
 namespace edacrt {
 
@@ -33,6 +34,10 @@ class Film {
 
 /// How linear radiance becomes display values in [0, 1] (before sRGB encoding).
 enum class ToneMap { clamp, reinhard, aces };
+inline constexpr auto kToneMaps =
+    enum_table<ToneMap>("tone map", {{ToneMap::clamp, "clamp", "values above 1 are white"},
+                                     {ToneMap::reinhard, "reinhard", "x / (1 + x)"},
+                                     {ToneMap::aces, "aces", "Narkowicz's ACES fit"}});
 
 /// Exposures beyond this many stops are rejected: 2^64 already turns any visible radiance
 /// white or black.
@@ -45,7 +50,5 @@ void validate_exposure(float exposure_ev);
 /// are not positive (NaN included) become 0; +inf and radiance from 1e6 up become white, as
 /// bright as any operator shows. Throws InputError for an invalid exposure.
 Image tone_map(Image linear, float exposure_ev, ToneMap op);
-
-ToneMap parse_tone_map(std::string_view name);
 
 }  // namespace edacrt

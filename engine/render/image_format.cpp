@@ -13,19 +13,10 @@ ImageFormat image_format(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".png") return ImageFormat::png;
-    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::jpg;
-    if (ext == ".hdr") return ImageFormat::hdr;
-    if (ext == ".pfm") return ImageFormat::pfm;
-    if (ext == ".exr") return ImageFormat::exr;
+    if (const auto format = parse_enum(kImageFormats, ext)) return *format;
     throw InputError(path.string() + ": unknown image format " +
                      (ext.empty() ? std::string("(no extension)") : "'" + ext + "'") +
-                     "; the extension chooses it: " + image_extensions());
-}
-
-const std::string& image_extensions() {
-    static const std::string names = ".png, .jpg, .jpeg, .hdr, .pfm, .exr";
-    return names;
+                     "; the extension chooses it: " + enum_names(kImageFormats));
 }
 
 bool is_linear(ImageFormat format) {

@@ -9,17 +9,24 @@
 #include "render/exr_image.h"
 #include "render/film.h"
 #include "render/image.h"
+#include "util/enum_table.h"
 
 namespace edacrt {
 
 enum class ImageFormat { png, jpg, hdr, pfm, exr };
+/// The formats by extension (.jpeg is another name of jpg).
+inline constexpr auto kImageFormats = enum_table<ImageFormat>(
+    "image format",
+    {{ImageFormat::png, ".png", "8-bit sRGB, tone-mapped"},
+     {ImageFormat::jpg, ".jpg", "8-bit sRGB, tone-mapped"},
+     {ImageFormat::jpg, ".jpeg"},
+     {ImageFormat::hdr, ".hdr", "Radiance RGBE"},
+     {ImageFormat::pfm, ".pfm", "float"},
+     {ImageFormat::exr, ".exr", "OpenEXR with the render's settings in its header"}});
 
 /// The format of a path's extension (.png, .jpg or .jpeg, .hdr, .pfm, .exr, any letter case).
 /// Throws InputError naming the known extensions.
 ImageFormat image_format(const std::filesystem::path& path);
-
-/// ".png, .jpg, .jpeg, .hdr, .pfm, .exr", for help texts and messages.
-const std::string& image_extensions();
 
 /// The largest image file load_image() reads: a 16384 x 16384 float image and its headers.
 constexpr std::uint64_t kMaxImageFileBytes = 4ull << 30;

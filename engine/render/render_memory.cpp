@@ -120,7 +120,7 @@ void check_render_memory(const RenderSettings& settings, std::uint64_t extra_byt
     if (need <= limit.bytes) return;
     const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
     throw InputError("a " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                     " " + std::string(integrator_name(settings.integrator)) +
+                     " " + std::string(enum_name(kIntegrators, settings.integrator)) +
                      " render needs about " + format_bytes(need) + " of memory (" +
                      std::to_string(need / pixels) + " bytes per pixel), more than the " +
                      format_bytes(limit.bytes) + " of " + limit.source + "; choose a smaller size");

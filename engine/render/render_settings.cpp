@@ -37,44 +37,4 @@ std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths)
     return std::size_t(std::clamp<std::uint64_t>(std::min(wave, paths), 1, paths > 0 ? paths : 1));
 }
 
-Integrator parse_integrator(std::string_view name) {
-    for (Integrator i : {Integrator::primary, Integrator::ao, Integrator::path})
-        if (integrator_name(i) == name) return i;
-    throw InputError("unknown integrator '" + std::string(name) + "' (known: primary, ao, path)");
-}
-
-std::string_view integrator_name(Integrator integrator) {
-    switch (integrator) {
-        case Integrator::primary:
-            return "primary";
-        case Integrator::ao:
-            return "ao";
-        case Integrator::path:
-            return "path";
-    }
-    return "?";
-}
-
-PrimaryShading parse_primary_shading(std::string_view name) {
-    for (PrimaryShading s : {PrimaryShading::eye_light, PrimaryShading::normal,
-                             PrimaryShading::albedo, PrimaryShading::depth})
-        if (primary_shading_name(s) == name) return s;
-    throw InputError("unknown primary shading '" + std::string(name) +
-                     "' (known: eye-light, normal, albedo, depth)");
-}
-
-std::string_view primary_shading_name(PrimaryShading shading) {
-    switch (shading) {
-        case PrimaryShading::eye_light:
-            return "eye-light";
-        case PrimaryShading::normal:
-            return "normal";
-        case PrimaryShading::albedo:
-            return "albedo";
-        case PrimaryShading::depth:
-            return "depth";
-    }
-    return "?";
-}
-
 }  // namespace edacrt

@@ -5,15 +5,26 @@
 #include <string>
 #include <string_view>
 
+#include "util/enum_table.h"
+
 namespace edacrt {
 
 /// primary: one camera ray per sample, shaded for debugging; ao: ambient occlusion; path:
 /// unidirectional path tracing with next-event estimation and MIS.
 enum class Integrator { primary, ao, path };
+inline constexpr auto kIntegrators = enum_table<Integrator>(
+    "integrator", {{Integrator::primary, "primary", "camera rays only, debug shading"},
+                   {Integrator::ao, "ao", "ambient occlusion"},
+                   {Integrator::path, "path", "path tracing with next-event estimation"}});
 
 /// What the primary integrator shows: eye-light (Lambertian lit from the eye), the shading
 /// normal (0.5 n + 0.5), the diffuse albedo, or depth (1 near, 0 at the far end of the scene).
 enum class PrimaryShading { eye_light, normal, albedo, depth };
+inline constexpr auto kPrimaryShadings = enum_table<PrimaryShading>(
+    "primary shading", {{PrimaryShading::eye_light, "eye-light", "Lambertian, lit from the eye"},
+                        {PrimaryShading::normal, "normal", "the shading normal"},
+                        {PrimaryShading::albedo, "albedo", "the diffuse albedo"},
+                        {PrimaryShading::depth, "depth", "1 near, 0 at the far end"}});
 
 struct RenderSettings {
     int width = 512;
@@ -47,10 +58,5 @@ inline constexpr std::uint64_t kWavefrontBudget = std::uint64_t(1) << 30;
 /// ao_samples, so that a wavefront's AO batch holds about wavefront_paths rays) or, when it is
 /// 0, the whole pass within kWavefrontBudget. Never more than `paths`, never 0.
 std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths);
-
-Integrator parse_integrator(std::string_view name);
-std::string_view integrator_name(Integrator integrator);
-PrimaryShading parse_primary_shading(std::string_view name);
-std::string_view primary_shading_name(PrimaryShading shading);
 
 }  // namespace edacrt

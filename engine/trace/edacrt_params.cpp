@@ -31,13 +31,6 @@ void set_field(EdacrtParams& p, double value) {
         p.*Member = T(value);
 }
 
-constexpr std::array<std::string_view, 2> kHitRatios = {"sampled", "surface-area"};
-constexpr std::array<std::string_view, 3> kOrders = {"sampled", "direction-sign", "left-first"};
-constexpr std::array<std::string_view, 3> kFilterSkips = {"off", "paper", "triangles"};
-constexpr std::array<std::string_view, 4> kSmallNodes = {"every-ray", "capped", "surface-area",
-                                                         "scaled"};
-constexpr std::array<std::string_view, 2> kBinnings = {"node-box", "centroids"};  // enum order
-constexpr std::array<std::string_view, 2> kSecondChildren = {"after-first", "split"};
 constexpr std::array<std::string_view, 3> kPresets = {"default", "paper", "dacrt"};
 
 constexpr double kCount = 1e9;                               // upper bound of the count parameters
@@ -59,17 +52,23 @@ constexpr ParamInfo real(std::string_view key, std::string_view label, std::stri
             max, ui_max, {},   get_field<Member>, set_field<Member>};
 }
 
-template <auto Member>
-constexpr ParamInfo choice(std::string_view key, std::string_view label, std::string_view help,
-                           std::span<const std::string_view> names) {
+/// The names of an enum's table, stored once for ParamInfo::choices.
+template <const auto& Table>
+constexpr auto kChoiceNames = enum_name_array(Table);
+
+/// A choice among the names of `Table`, which lists the enum's values in order (the parameter
+/// is read and set as the value's index).
+template <auto Member, const auto& Table>
+constexpr ParamInfo choice(std::string_view key, std::string_view label, std::string_view help) {
+    static_assert(in_enum_order(Table), "a choice's table lists its values in enum order");
     return {key,
             label,
             help,
             Kind::choice,
             0.0,
-            double(names.size() - 1),
+            double(Table.size() - 1),
             0.0,
-            names,
+            kChoiceNames<Table>,
             get_field<Member>,
             set_field<Member>};
 }
@@ -80,20 +79,18 @@ const std::array<ParamInfo, 18> kParams = {
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
         "candidate splits per node (Section 3.1, after Wald 2007).",
         2, 256),
-    choice<&EdacrtParams::binning>(
+    choice<&EdacrtParams::binning, kBinnings>(
         "binning", "binning",
         "node-box: the bins span V, the node box, on its longest axis (the paper, Section 3.1). "
         "centroids: they span the range of the centroids on that axis (Wald 2007), so no bin is "
         "empty at the ends. When all centroids land in one bin of V, node-box falls back to "
         "the centroids' range; when they coincide on V's longest axis, both bin along the axis "
-        "where the centroids spread most.",
-        kBinnings),
-    choice<&EdacrtParams::hit_ratio>(
+        "where the centroids spread most."),
+    choice<&EdacrtParams::hit_ratio, kHitRatios>(
         "hit-ratio", "hit ratio alpha",
         "Where alpha_L, alpha_R in the cost C_T + C_I (alpha_L N_L + alpha_R N_R) come from. "
         "sampled: the share of sampled rays hitting each child box (EDACRT, Section 3.2). "
-        "surface-area: child area / node area, which assumes uniform rays (DACRT).",
-        kHitRatios),
+        "surface-area: child area / node area, which assumes uniform rays (DACRT)."),
     integer<&EdacrtParams::sample_threshold>(
         "sample-threshold", "sample threshold",
         "Nodes with more rays than this draw sample-count random rays to estimate alpha and the "
@@ -104,36 +101,32 @@ const std::array<ParamInfo, 18> kParams = {
         "Rays drawn (with replacement) per sampled node; each is tested against all 2(K-1) "
         "candidate boxes (Section 3.2; the paper uses 100).",
         1, 1e6),
-    choice<&EdacrtParams::small_nodes>(
+    choice<&EdacrtParams::small_nodes, kSmallNodes>(
         "small-nodes", "small nodes",
         "How nodes with at most sample-threshold rays estimate alpha: every-ray tests all their "
         "rays (exact, 2(K-1) box tests each), capped draws at most sample-count as large nodes "
         "do, surface-area uses area ratios and the direction-sign order, scaled draws one ray "
         "in 16 (at least one, at most sample-count), so sampling costs about half what filtering "
-        "the node's rays into both children costs.",
-        kSmallNodes),
-    choice<&EdacrtParams::order>(
+        "the node's rays into both children costs."),
+    choice<&EdacrtParams::order, kTraversalOrders>(
         "order", "traversal order",
         "Which child is visited first, so its hits cull the rays of the second (Section 3.3). "
         "sampled: the child most sampled rays enter first (EDACRT). direction-sign: by the "
-        "majority sign of the rays' direction on the split axis (DACRT). left-first: no order.",
-        kOrders),
-    choice<&EdacrtParams::filter_skip>(
+        "majority sign of the rays' direction on the split axis (DACRT). left-first: no order."),
+    choice<&EdacrtParams::filter_skip, kFilterSkips>(
         "filter-skip", "filter skipping",
         "When a child gets its parent's rays unfiltered (Section 3.4): if alpha > 1 - C_bv / "
         "(n_child C_child). paper: n_child C_child is what the child spends on a ray that misses "
         "it, 2 C_bv (its two box tests) for an inner child, N C_I for a child that will be a "
-        "leaf. triangles: N C_child at any depth. off: always filter (DACRT).",
-        kFilterSkips),
-    choice<&EdacrtParams::second_child>(
+        "leaf. triangles: N C_child at any depth. off: always filter (DACRT)."),
+    choice<&EdacrtParams::second_child, kSecondChildren>(
         "second-child", "second child",
         "When the second child gets its rays. after-first: all of them once the first child is "
         "done, so its hits cull them (the paper, Section 3.3); subtrees run one after the other. "
         "split: the rays that missed the first child's box go to the second child at once, as a "
         "task beside the first child (no hit there can cull them), the others once it is done; "
         "the same culling and box tests, the second child recursing twice, and subtrees in "
-        "parallel.",
-        kSecondChildren),
+        "parallel."),
     integer<&EdacrtParams::leaf_rays>(
         "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
     integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "util/enum_table.h"
+
 namespace edacrt {
 
 /// Where a split's hit ratios alpha_L, alpha_R come from (Section 3.2).
@@ -14,6 +16,8 @@ enum class HitRatio : std::uint8_t {
     sampled,       // EDACRT: the share of sampled rays that hit each child box
     surface_area,  // DACRT: child box area / node box area (uniform rays, Wald 2007)
 };
+inline constexpr auto kHitRatios = enum_table<HitRatio>(
+    "hit ratio", {{HitRatio::sampled, "sampled"}, {HitRatio::surface_area, "surface-area"}});
 
 /// Which child is visited first (Section 3.3).
 enum class TraversalOrder : std::uint8_t {
@@ -21,6 +25,10 @@ enum class TraversalOrder : std::uint8_t {
     direction_sign,  // DACRT: the majority sign of the rays' direction on the split axis
     left_first,      // no ordering: always the lower child first
 };
+inline constexpr auto kTraversalOrders = enum_table<TraversalOrder>(
+    "traversal order", {{TraversalOrder::sampled, "sampled"},
+                        {TraversalOrder::direction_sign, "direction-sign"},
+                        {TraversalOrder::left_first, "left-first"}});
 
 /// When rays are passed to a child without filtering (Section 3.4).
 enum class FilterSkip : std::uint8_t {
@@ -30,6 +38,9 @@ enum class FilterSkip : std::uint8_t {
                 // a leaf
     triangles,  // alpha > 1 - C_bv / (N C_child), N the child's triangle count, at any depth
 };
+inline constexpr auto kFilterSkips = enum_table<FilterSkip>(
+    "filter skipping",
+    {{FilterSkip::off, "off"}, {FilterSkip::paper, "paper"}, {FilterSkip::triangles, "triangles"}});
 
 /// How nodes with at most sample_threshold rays estimate their hit ratios.
 enum class SmallNodes : std::uint8_t {
@@ -38,6 +49,11 @@ enum class SmallNodes : std::uint8_t {
     surface_area,  // surface-area ratios (and the direction-sign order)
     scaled,        // draw one ray in kScaledSampleShare (at least one, at most sample_count)
 };
+inline constexpr auto kSmallNodes =
+    enum_table<SmallNodes>("small-node policy", {{SmallNodes::every_ray, "every-ray"},
+                                                 {SmallNodes::capped, "capped"},
+                                                 {SmallNodes::surface_area, "surface-area"},
+                                                 {SmallNodes::scaled, "scaled"}});
 
 /// SmallNodes::scaled: a sampled ray is tested against the 2(K-1) candidate boxes, two
 /// eight-lane tests for K = 8, as many as filtering eight rays into both children; one sample
@@ -49,6 +65,8 @@ enum class Binning : std::uint8_t {
     node_box,   // the paper: K equal bins across V, the node box, on its longest axis
     centroids,  // Wald 2007: K equal bins across the range the centroids span on that axis
 };
+inline constexpr auto kBinnings = enum_table<Binning>(
+    "binning", {{Binning::node_box, "node-box"}, {Binning::centroids, "centroids"}});
 
 /// When the second child gets its rays.
 enum class SecondChild : std::uint8_t {
@@ -56,6 +74,9 @@ enum class SecondChild : std::uint8_t {
     split,        // at once, as a task beside the first child, the rays that missed the first
                   // child's box (no hit there can cull them); the rest once it is done
 };
+inline constexpr auto kSecondChildren = enum_table<SecondChild>(
+    "second-child policy",
+    {{SecondChild::after_first, "after-first"}, {SecondChild::split, "split"}});
 
 /// Parameters of EDACRT (Nabata, Iwasaki, Dobashi, Nishita, HPG 2013). Section numbers refer to
 /// that paper. dacrt_params() turns the same recursion into object-partitioning DACRT (Afra
@@ -111,7 +132,7 @@ struct ParamInfo {
     Kind kind;
     double min, max;                            // valid range (integer, real)
     double ui_max;                              // slider end in the viewer (real)
-    std::span<const std::string_view> choices;  // names, in enum order (choice)
+    std::span<const std::string_view> choices;  // names, in enum order (choice; its EnumTable)
     double (*get)(const EdacrtParams&);         // a choice as its index
     void (*set)(EdacrtParams&, double);
 };

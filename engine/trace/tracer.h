@@ -12,20 +12,33 @@
 #include "scene/scene.h"
 #include "trace/edacrt_params.h"
 #include "trace/trace_stats.h"
+#include "util/enum_table.h"
 #include "util/frame_memory.h"
 
 namespace edacrt {
 
 /// The tracing methods behind the Tracer interface.
 enum class Method { naive, edacrt, dacrt, bvh, embree };
+inline constexpr auto kMethods =
+    enum_table<Method>("method", {{Method::edacrt, "edacrt", "Nabata 2013"},
+                                  {Method::dacrt, "dacrt", "Afra 2012"},
+                                  {Method::bvh, "bvh", "binned SAH, rebuilt per frame"},
+                                  {Method::embree, "embree"},
+                                  {Method::naive, "naive", "every triangle"}});
 
 /// How the Embree baseline hands rays to Embree: one at a time, in packets of 8, or as streams.
 enum class EmbreeMode { single, packet8, stream };
+inline constexpr auto kEmbreeModes =
+    enum_table<EmbreeMode>("Embree mode", {{EmbreeMode::single, "single", "rtcIntersect1"},
+                                           {EmbreeMode::packet8, "packet8", "rtcIntersect8"},
+                                           {EmbreeMode::stream, "stream", "rtcIntersect1M"}});
 inline constexpr EmbreeMode kDefaultEmbreeMode =
     EmbreeMode::packet8;  // fastest on camera rays (README)
 
 /// Closest hit, or any hit (occlusion: a ray may stop at its first hit).
 enum class Query { closest, any };
+inline constexpr auto kQueries =
+    enum_table<Query>("query", {{Query::closest, "closest"}, {Query::any, "any"}});
 
 /// How update_scene() takes a new frame of the same triangles (an animation, animation.h).
 enum class SceneUpdate {
@@ -35,10 +48,19 @@ enum class SceneUpdate {
     refit,    // bvh, embree: the tree kept, its boxes refitted to the new positions (Embree:
               // RTC_BUILD_QUALITY_REFIT); the others rebuild
 };
+inline constexpr auto kSceneUpdates = enum_table<SceneUpdate>(
+    "scene update",
+    {{SceneUpdate::rebuild, "rebuild", "from scratch"},
+     {SceneUpdate::dynamic, "dynamic", "embree: a dynamic scene at low build quality"},
+     {SceneUpdate::refit, "refit", "bvh, embree: the tree kept, its boxes refitted"}});
 
 /// What update_scene() did to the tracer's structure. `none`: the method keeps no structure
 /// (naive, dacrt, edacrt), only per-frame triangle data (EDACRT's pre-split pieces included).
 enum class UpdateWork { none, rebuilt, refitted };
+inline constexpr auto kUpdateWorks =
+    enum_table<UpdateWork>("update work", {{UpdateWork::none, "none"},
+                                           {UpdateWork::rebuilt, "rebuilt"},
+                                           {UpdateWork::refitted, "refitted"}});
 
 struct UpdateStats {
     UpdateWork work = UpdateWork::none;
@@ -108,30 +130,10 @@ class Tracer {
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {},
                                     EmbreeMode embree_mode = kDefaultEmbreeMode);
 
-std::string_view method_name(Method method);
-
-/// "naive" -> Method::naive; throws InputError listing the known names.
-Method parse_method(std::string_view name);
-
-/// The names of all methods, for help texts.
-std::vector<std::string> method_names();
-
-std::string_view embree_mode_name(EmbreeMode mode);
-
-/// "packet8" -> EmbreeMode::packet8; throws InputError listing the known names.
-EmbreeMode parse_embree_mode(std::string_view name);
-
 /// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
 FrameVector<Triangle> gather_triangles(const Scene& scene);
 
 /// The same into `out`, which keeps its storage when the triangle count does not change.
 void gather_triangles(const Scene& scene, FrameVector<Triangle>& out);
-
-std::string_view scene_update_name(SceneUpdate how);
-
-/// "refit" -> SceneUpdate::refit; throws InputError listing the known names.
-SceneUpdate parse_scene_update(std::string_view name);
-
-std::string_view update_work_name(UpdateWork work);
 
 }  // namespace edacrt

@@ -314,12 +314,13 @@ TEST(HardCases, ThinPrismsFromInsideNeverLeak) {
                     }
                     rays.push_back({glm::vec3(org), glm::vec3(dir)});
                 }
-                // Embree's own inside test leaks rays nearly parallel to triangles thinner
-                // than 1:1e4 (measured: up to 7 of 120 rays per prism); ours must not.
+                // Embree's own inside test leaks rays nearly parallel to triangles of 1:1e4
+                // and thinner (measured: up to 7 of 120 rays per prism; at 1:1e4, one ray of
+                // the prisms a Clang build generates); ours must not.
                 checked += expect_reference_hits(
                     prism.scene, rays,
                     std::to_string(sides) + "-sided prism, aspect " + std::to_string(aspect), true,
-                    1e-5, aspect > 1e4 ? rays.size() / 8 : 0);
+                    1e-5, aspect >= 1e4 ? rays.size() / 8 : 0);
                 if (HasFailure()) return;
                 const auto base = std::uint32_t(all.positions.size());
                 all.positions.insert(all.positions.end(), prism.scene.positions.begin(),
@@ -332,7 +333,7 @@ TEST(HardCases, ThinPrismsFromInsideNeverLeak) {
     all.triangle_materials.assign(all.triangles.size(), 0);
     expect_reference_hits(all, all_rays, "all prisms in one scene", true, 1e-5,
                           all_rays.size() / 8);
-    std::printf("Embree: %zu wrong answers among the prisms' rays (allowed beyond aspect 1e4)\n",
+    std::printf("Embree: %zu wrong answers among the prisms' rays (allowed from aspect 1e4)\n",
                 embree_wrong);
 }
 

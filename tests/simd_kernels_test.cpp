@@ -153,14 +153,10 @@ TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
     LaneOutcomes outcomes;
     for (int round = 0; round < 40000; ++round) {
         // Rays aimed at a triangle's corner, edge or inside, or anywhere.
-        TriangleBlock8 block;
         Triangle tris[8];
-        for (int l = 0; l < 8; ++l) {
-            tris[l] = awkward_triangle(rng);
-            const glm::vec3* corners[3] = {&tris[l].p0, &tris[l].p1, &tris[l].p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) block.p[c][a][l] = (*corners[c])[a];
-        }
+        for (Triangle& tri : tris) tri = awkward_triangle(rng);
+        TriangleBlock8 block;
+        pack_triangle_blocks(8, [&](std::size_t l) { return tris[l]; }, {&block, 1});
         Ray ray = awkward_ray(rng);
         const Triangle& target = tris[rng() % 8];
         const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;

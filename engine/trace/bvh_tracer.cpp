@@ -49,12 +49,6 @@ UpdateWork BvhTracer::update(const Scene& scene, SceneUpdate how) {
 }
 
 void BvhTracer::refit(const Scene& scene) {
-    const auto set_lane = [](Bvh8Node& node, int lane, const Aabb& box) {
-        for (int axis = 0; axis < 3; ++axis) {
-            node.boxes.lo[axis][lane] = box.lo[axis];
-            node.boxes.hi[axis][lane] = box.hi[axis];
-        }
-    };
     const auto used = [](const Bvh8Node& node, int lane) {
         return node.boxes.lo[0][lane] != kInfinity;  // unused lanes hold empty boxes
     };
@@ -70,7 +64,7 @@ void BvhTracer::refit(const Scene& scene) {
                     leaf_triangles_[k] = scene.corners(bvh_prims_[k]);
                     box.extend(conservative_bounds(leaf_triangles_[k]));
                 }
-                set_lane(node, lane, box);
+                set_lane(node.boxes, lane, box);
             }
         }
     });
@@ -82,12 +76,8 @@ void BvhTracer::refit(const Scene& scene) {
             if (!used(node, lane) || node.count[lane] != 0) continue;
             const Bvh8Node& child = wide_[node.child[lane]];
             Aabb box;
-            for (int c = 0; c < 8 && used(child, c); ++c)
-                for (int axis = 0; axis < 3; ++axis) {
-                    box.lo[axis] = std::min(box.lo[axis], child.boxes.lo[axis][c]);
-                    box.hi[axis] = std::max(box.hi[axis], child.boxes.hi[axis][c]);
-                }
-            set_lane(node, lane, box);
+            for (int c = 0; c < 8 && used(child, c); ++c) box.extend(lane_box(child.boxes, c));
+            set_lane(node.boxes, lane, box);
         }
     }
 }

@@ -404,13 +404,10 @@ class Recursion {
         // boxes, the per-candidate counts kept in vector lanes.
         const int blocks = (candidates + 7) / 8;
         for (int b = 0; b < blocks; ++b) {
-            Aabb left[8], right[8];  // empty boxes pad the last block
-            for (int l = 0; l < 8 && 8 * b + l < candidates; ++l) {
-                left[l] = sc.splits[std::size_t(8 * b + l)].left;
-                right[l] = sc.splits[std::size_t(8 * b + l)].right;
-            }
-            sc.left_boxes[b] = gather(left);
-            sc.right_boxes[b] = gather(right);
+            const BinSplit* split = &sc.splits[std::size_t(8 * b)];
+            const int lanes = std::min(8, candidates - 8 * b);
+            sc.left_boxes[b] = pack_boxes8(lanes, [&](int l) { return split[l].left; });
+            sc.right_boxes[b] = pack_boxes8(lanes, [&](int l) { return split[l].right; });
 
             std::fill_n(&sc.counters[4 * b], 4, RecursionScratch::Counters{_mm256_setzero_si256()});
         }
@@ -428,9 +425,9 @@ class Recursion {
                 _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
             for (int b = 0; b < blocks; ++b) {
                 __m256 left_entry, right_entry;
-                const __m256 left =
-                    lane_mask(unsigned(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry)));
-                const __m256 right = lane_mask(
+                const __m256 left = simd8::lane_mask(
+                    unsigned(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry)));
+                const __m256 right = simd8::lane_mask(
                     unsigned(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry)));
                 const __m256 left_nearer = _mm256_or_ps(
                     _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
@@ -459,16 +456,6 @@ class Recursion {
             sc.right_first[j] = lane(3);
         }
         return samples;
-    }
-
-    static Boxes8 gather(const Aabb (&boxes)[8]) {
-        Boxes8 b;
-        for (int k = 0; k < 3; ++k)
-            for (int l = 0; l < 8; ++l) {
-                b.lo[k][l] = boxes[l].lo[k];
-                b.hi[k][l] = boxes[l].hi[k];
-            }
-        return b;
     }
 
     std::size_t count_negative(const Node& node, int axis) const {
@@ -519,15 +506,10 @@ class Recursion {
 
     /// The leaf's triangles as blocks of eight for trace_rays.
     void gather_triangle_blocks(const Node& node, std::vector<TriangleBlock8>& tri_blocks) {
-        const std::size_t blocks = (node.tri_count + 7) / 8;
-        tri_blocks.resize(std::max(tri_blocks.size(), blocks));
-        for (std::size_t k = 0; k < blocks * 8; ++k) {
-            TriangleBlock8& block = tri_blocks[k / 8];
-            const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
-            const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
-        }
+        tri_blocks.resize(std::max(tri_blocks.size(), (node.tri_count + 7) / 8));
+        pack_triangle_blocks(
+            node.tri_count, [&](std::size_t k) { return scene_.triangles[node.tris[k]]; },
+            tri_blocks);
     }
 
     /// The leaf's triangles, one at a time, and the scene triangle of each, for
@@ -592,7 +574,7 @@ class Recursion {
                 intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), candidates, lanes);
                 unsigned hits = 0;
                 if (lanes.accepted) {  // t <= t_far: the lane's ray hits nearer
-                    const __m256 take = lane_mask(lanes.accepted);
+                    const __m256 take = simd8::lane_mask(lanes.accepted);
                     const __m256 inv_det = _mm256_load_ps(lanes.inv_det);
                     const auto update = [&](float* to, __m256 value) {
                         _mm256_store_ps(to, _mm256_blendv_ps(_mm256_load_ps(to), value, take));
@@ -648,13 +630,6 @@ class Recursion {
 
     /// trace_rays prefetches the hit this many rays ahead.
     static constexpr std::size_t kPrefetchRays = 4;
-
-    /// Bit l of a mask to all-ones in lane l.
-    static __m256 lane_mask(unsigned mask) {
-        const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-        return _mm256_castsi256_ps(
-            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(mask)), bits), bits));
-    }
 
     /// The rays at stream positions [begin, end), one at a time, against eight triangles at a
     /// time (the blocks of gather_triangle_blocks). Returns the triangle tests.

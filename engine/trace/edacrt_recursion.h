@@ -27,6 +27,7 @@
 #include "geometry/triangle8.h"
 #include "trace/edacrt_params.h"
 #include "trace/ray_filter.h"
+#include "trace/ray_sampling.h"
 #include "trace/ray_stream.h"
 #include "trace/stable_partition.h"
 #include "trace/trace_stats.h"
@@ -112,29 +113,21 @@ inline constexpr int kMaxDepth = 160;
 /// uses it only between its nested parallel calls, which run isolated, so no other node's work
 /// can interleave on the thread meanwhile.
 struct RecursionScratch {
-    struct Counters {  // a block of eight candidates' sampling counts
-        __m256i lanes;
-    };
     PartitionScratch partition;  // of the triangles
     std::vector<Bin> bins;
     std::vector<BinSplit> splits;
-    std::vector<std::uint32_t> left_hits, right_hits, left_first, right_first;
-    std::vector<Boxes8> left_boxes, right_boxes;  // the candidates' boxes, eight at a time
-    std::vector<Counters> counters;               // four per block of candidates
-    std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles, eight at a time
-    std::vector<TriangleCorners> tri_corners;     // or one at a time
-    std::vector<std::int32_t> tri_prims;          // with their scene triangles
+    SampleCounts sampling;
+    std::vector<TriangleBlock8> tri_blocks;    // a leaf's triangles, eight at a time
+    std::vector<TriangleCorners> tri_corners;  // or one at a time
+    std::vector<std::int32_t> tri_prims;       // with their scene triangles
 
     void reserve(int k, std::size_t triangles) {
-        const auto K = std::size_t(k), blocks = (K + 6) / 8;
+        const auto K = std::size_t(k);
         partition.reserve(triangles);
         if (bins.size() == K) return;
         bins.resize(K);
         splits.resize(K - 1);
-        for (auto* v : {&left_hits, &right_hits, &left_first, &right_first}) v->resize(K);
-        left_boxes.resize(blocks);
-        right_boxes.resize(blocks);
-        counters.resize(4 * blocks);
+        sampling.resize(k);
     }
 };
 using RecursionScratches = tbb::enumerable_thread_specific<RecursionScratch>;
@@ -288,8 +281,8 @@ class Recursion {
                 continue;
             }
             if (sampled_alpha) {
-                c.alpha_left = float(sc.left_hits[j]) / float(samples);
-                c.alpha_right = float(sc.right_hits[j]) / float(samples);
+                c.alpha_left = float(sc.sampling.left_hits[j]) / float(samples);
+                c.alpha_right = float(sc.sampling.right_hits[j]) / float(samples);
             } else {  // the surface-area heuristic's conditional probabilities
                 c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
                 c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
@@ -313,7 +306,7 @@ class Recursion {
         split.box[0] = sc.splits[best].left;
         split.box[1] = sc.splits[best].right;
         if (sampled && p_.order == TraversalOrder::sampled)
-            split.first = sc.left_first[best] >= sc.right_first[best] ? 0 : 1;
+            split.first = sc.sampling.left_first[best] >= sc.sampling.right_first[best] ? 0 : 1;
         else if (p_.order == TraversalOrder::left_first)
             split.first = 0;
         else  // the near child by the majority sign of the rays' direction on the axis
@@ -371,10 +364,9 @@ class Recursion {
                                  [](const Bin& b) { return b.count > 0; }));
     }
 
-    /// Ray sampling (Section 3.2): for every candidate, how many sampled rays hit each child
-    /// box, and which child each enters first. A ray that starts inside both boxes enters them
-    /// at the same distance; it counts for the child on the side it comes from along the split
-    /// axis. Returns the number of samples, 0 when this node takes surface-area ratios instead.
+    /// Ray sampling (Section 3.2, ray_sampling.h): for every candidate, how many sampled rays
+    /// hit each child box, and which child each enters first. Returns the number of samples,
+    /// 0 when this node takes surface-area ratios instead.
     std::uint32_t estimate_hit_ratios(const Node& node, int axis, RecursionScratch& sc) {
         const bool wanted =
             p_.hit_ratio == HitRatio::sampled || p_.order == TraversalOrder::sampled;
@@ -394,67 +386,15 @@ class Recursion {
         else if (small && p_.small_nodes == SmallNodes::scaled)
             samples = std::uint32_t(
                 std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1, p_.sample_count));
-        const int candidates = p_.bins - 1;
-        const std::uint32_t node_seed = hash_combine(
-            hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
-        const auto tests_per_sample = std::uint32_t(2 * candidates);
+        const auto tests_per_sample = std::uint32_t(2 * (p_.bins - 1));
         box_tests_ += std::uint64_t(samples) * tests_per_sample;
         obs_.sampled(node, samples, std::uint64_t(samples) * tests_per_sample);
-        // Eight candidates at a time: each sampled ray against eight left and eight right
-        // boxes, the per-candidate counts kept in vector lanes.
-        const int blocks = (candidates + 7) / 8;
-        for (int b = 0; b < blocks; ++b) {
-            const BinSplit* split = &sc.splits[std::size_t(8 * b)];
-            const int lanes = std::min(8, candidates - 8 * b);
-            sc.left_boxes[b] = pack_boxes8(lanes, [&](int l) { return split[l].left; });
-            sc.right_boxes[b] = pack_boxes8(lanes, [&](int l) { return split[l].right; });
-
-            std::fill_n(&sc.counters[4 * b], 4, RecursionScratch::Counters{_mm256_setzero_si256()});
-        }
-        const RayStream& stream = batch_.stream;
-        for (std::uint32_t s = 0; s < samples; ++s) {
-            const std::size_t i =
-                node.ray_begin +
-                (draw ? std::size_t((std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >>
-                                    32)
-                      : s);
-            obs_.sampled_ray(stream.id[i], tests_per_sample);
-            const SlabRay1x8 ray = make_slab_ray1x8(stream.slab_ray(i));
-            const float t_far = stream.t_far[i];
-            const __m256 left_on_tie =
-                _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
-            for (int b = 0; b < blocks; ++b) {
-                __m256 left_entry, right_entry;
-                const __m256 left = simd8::lane_mask(
-                    unsigned(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry)));
-                const __m256 right = simd8::lane_mask(
-                    unsigned(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry)));
-                const __m256 left_nearer = _mm256_or_ps(
-                    _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
-                    _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
-                // left && (!right || left_nearer), right && (!left || !left_nearer)
-                const __m256 left_first =
-                    _mm256_and_ps(left, _mm256_or_ps(_mm256_andnot_ps(right, left), left_nearer));
-                const __m256 right_first =
-                    _mm256_andnot_ps(_mm256_and_ps(left, left_nearer), right);
-                const __m256 masks[4] = {left, right, left_first, right_first};
-                for (int k = 0; k < 4; ++k)  // a true lane is -1: subtracting counts it
-                    sc.counters[4 * b + k].lanes = _mm256_sub_epi32(sc.counters[4 * b + k].lanes,
-                                                                    _mm256_castps_si256(masks[k]));
-            }
-        }
-        for (int j = 0; j < candidates; ++j) {
-            const auto lane = [&](int k) {
-                alignas(32) std::uint32_t lanes[8];
-                _mm256_store_si256(reinterpret_cast<__m256i*>(lanes),
-                                   sc.counters[4 * (j / 8) + k].lanes);
-                return lanes[j % 8];
-            };
-            sc.left_hits[j] = lane(0);
-            sc.right_hits[j] = lane(1);
-            sc.left_first[j] = lane(2);
-            sc.right_first[j] = lane(3);
-        }
+        const RaySample sample{samples, draw,
+                               hash_combine(hash_combine(p_.seed, std::uint32_t(node.depth)),
+                                            std::uint32_t(node.ray_count))};
+        sample_rays(batch_.stream, node.ray_begin, node.ray_count, sample, axis,
+                    std::span<const BinSplit>(sc.splits), sc.sampling,
+                    [&](std::uint32_t ray) { obs_.sampled_ray(ray, tests_per_sample); });
         return samples;
     }
 

@@ -21,11 +21,9 @@
 #include "geometry/aabb.h"
 #include "geometry/binning.h"
 #include "geometry/ray.h"
-#include "geometry/ray_box.h"
-#include "geometry/ray_box8.h"
 #include "geometry/triangle.h"
-#include "geometry/triangle8.h"
 #include "trace/edacrt_params.h"
+#include "trace/leaf_kernels.h"
 #include "trace/ray_filter.h"
 #include "trace/ray_sampling.h"
 #include "trace/ray_stream.h"
@@ -44,13 +42,6 @@ struct EdacrtScene {
     FrameVector<glm::vec3> centroids;
     FrameVector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
     Aabb box;
-};
-
-/// One batch: the stream the recursion partitions, and the hits, indexed by the ray's number
-/// (its id in the stream).
-struct RayBatch {
-    RayStream stream;
-    Hit* hits;
 };
 
 /// A subproblem: the rays that reach V, and the triangles whose bounds make up V.
@@ -117,9 +108,7 @@ struct RecursionScratch {
     std::vector<Bin> bins;
     std::vector<BinSplit> splits;
     SampleCounts sampling;
-    std::vector<TriangleBlock8> tri_blocks;    // a leaf's triangles, eight at a time
-    std::vector<TriangleCorners> tri_corners;  // or one at a time
-    std::vector<std::int32_t> tri_prims;       // with their scene triangles
+    LeafScratch leaf;
 
     void reserve(int k, std::size_t triangles) {
         const auto K = std::size_t(k);
@@ -418,24 +407,29 @@ class Recursion {
     /// unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
-        RecursionScratch& sc = scratch();
+        LeafScratch& sc = scratch().leaf;
+        const LeafTriangles tris{node.tris, node.tri_count, scene_.triangles.data(),
+                                 scene_.prims.data()};
         const std::size_t groups = (node.ray_count + 7) / 8, blocks = (node.tri_count + 7) / 8;
         const bool by_groups = groups * node.tri_count <= node.ray_count * blocks;
         if (by_groups)
-            gather_triangle_corners(node, sc.tri_corners, sc.tri_prims);
+            sc.pack_corners(tris);
         else
-            gather_triangle_blocks(node, sc.tri_blocks);
+            sc.pack_blocks(tris);
+        const LeafHooks hooks{obs_, node};
+        const std::size_t rays_end = node.ray_begin + node.ray_count;
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
-            return tests + (by_groups
-                                ? trace_ray_groups(node, sc.tri_corners, sc.tri_prims,
-                                                   range.begin(), range.end())
-                                : trace_rays(node, sc.tri_blocks, range.begin(), range.end()));
+            if (!by_groups)
+                return tests +
+                       trace_rays<Q>(batch_, range.begin(), range.end(), tris, sc.blocks, hooks);
+            return tests + trace_ray_groups<Q>(batch_, node.ray_begin + 8 * range.begin(),
+                                               std::min(node.ray_begin + 8 * range.end(), rays_end),
+                                               tris, sc.corners, sc.prims, hooks);
         };
         // Over groups of eight rays, or over rays.
         const tbb::blocked_range<std::size_t> all =
             by_groups ? tbb::blocked_range<std::size_t>(0, groups, 2)
-                      : tbb::blocked_range<std::size_t>(node.ray_begin,
-                                                        node.ray_begin + node.ray_count, 16);
+                      : tbb::blocked_range<std::size_t>(node.ray_begin, rays_end, 16);
         const std::uint64_t tests =
             node.ray_count * node.tri_count < kParallelLeafTests ? trace(all, 0) : isolated([&] {
                 return tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
@@ -444,206 +438,13 @@ class Recursion {
         obs_.leaf(visit, node, tests);
     }
 
-    /// The leaf's triangles as blocks of eight for trace_rays.
-    void gather_triangle_blocks(const Node& node, std::vector<TriangleBlock8>& tri_blocks) {
-        tri_blocks.resize(std::max(tri_blocks.size(), (node.tri_count + 7) / 8));
-        pack_triangle_blocks(
-            node.tri_count, [&](std::size_t k) { return scene_.triangles[node.tris[k]]; },
-            tri_blocks);
-    }
-
-    /// The leaf's triangles, one at a time, and the scene triangle of each, for
-    /// trace_ray_groups.
-    void gather_triangle_corners(const Node& node, std::vector<TriangleCorners>& corners,
-                                 std::vector<std::int32_t>& prims) {
-        corners.resize(std::max(corners.size(), node.tri_count));
-        prims.resize(std::max(prims.size(), node.tri_count));
-        for (std::size_t k = 0; k < node.tri_count; ++k) {
-            prims[k] = std::int32_t(scene_.prims[node.tris[k]]);
-            corners[k] = make_triangle_corners(scene_.triangles[node.tris[k]]);
-        }
-    }
-
-    /// The node's groups of eight rays [first, end) (stream positions ray_begin + 8 g on; the
-    /// last may be short), each against every triangle in order. Each lane does what
-    /// trace_rays does for its ray: a hit shortens its t_far for the next triangle, and an
-    /// any-hit ray stops at its first hit. Returns the triangle tests.
-    std::uint64_t trace_ray_groups(const Node& node, const std::vector<TriangleCorners>& tris,
-                                   const std::vector<std::int32_t>& prims, std::size_t first,
-                                   std::size_t end) {
-        const RayStream& stream = batch_.stream;
-        std::uint64_t tests = 0;
-        const std::size_t rays_end = node.ray_begin + node.ray_count;
-        for (std::size_t g = first; g != end; ++g) {
-            const std::size_t i = node.ray_begin + 8 * g;
-            const int n = int(std::min<std::size_t>(8, node.ray_count - 8 * g));
-            prefetch_hits(std::min(i + 8, rays_end), std::min(i + 16, rays_end));
-            const __m256i in_group =
-                _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-            const auto load = [&](const float* a) { return _mm256_maskload_ps(a + i, in_group); };
-            const __m256 org[3] = {load(stream.org[0]), load(stream.org[1]), load(stream.org[2])};
-            const __m256 dir[3] = {load(stream.dir[0]), load(stream.dir[1]), load(stream.dir[2])};
-            const WatertightRays8 rays = make_watertight_rays8(org, dir);
-            const __m256 tmin = load(stream.tmin);
-            // Each lane's t_far, and its hit: the triangle's place in the leaf (-1: none), u, v.
-            alignas(32) float t_far[8], u[8] = {}, v[8] = {};
-            alignas(32) std::int32_t hit[8], current[8];  // current: see kSkipsCurrentHit
-            _mm256_store_ps(t_far, load(stream.t_far));
-            std::fill_n(hit, 8, -1);
-            for (int l = 0; l < 8; ++l)
-                current[l] = kSkipsCurrentHit && l < n
-                                 ? batch_.hits[stream.id[i + std::size_t(l)]].prim
-                                 : -1;
-            unsigned active = (1u << n) - 1;
-            if constexpr (Q == Query::any)
-                active &= ~unsigned(_mm256_movemask_ps(
-                    _mm256_cmp_ps(_mm256_load_ps(t_far), _mm256_set1_ps(-kInfinity), _CMP_EQ_OQ)));
-            const unsigned traced = active;
-            std::uint32_t tested[8];
-            std::fill_n(tested, 8, std::uint32_t(node.tri_count));
-            for (std::size_t k = 0; k < node.tri_count && active; ++k) {
-                const std::int32_t prim = prims[k];
-                unsigned candidates = active;
-                if constexpr (kSkipsCurrentHit)
-                    candidates &=
-                        ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                            _mm256_set1_epi32(prim),
-                            _mm256_load_si256(reinterpret_cast<__m256i*>(current))))));
-                if (!candidates) continue;
-                TriangleLanes8 lanes;
-                intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), candidates, lanes);
-                unsigned hits = 0;
-                if (lanes.accepted) {  // t <= t_far: the lane's ray hits nearer
-                    const __m256 take = simd8::lane_mask(lanes.accepted);
-                    const __m256 inv_det = _mm256_load_ps(lanes.inv_det);
-                    const auto update = [&](float* to, __m256 value) {
-                        _mm256_store_ps(to, _mm256_blendv_ps(_mm256_load_ps(to), value, take));
-                    };
-                    update(t_far, _mm256_load_ps(lanes.t));
-                    update(u, _mm256_mul_ps(_mm256_load_ps(lanes.v), inv_det));
-                    update(v, _mm256_mul_ps(_mm256_load_ps(lanes.w), inv_det));
-                    update(reinterpret_cast<float*>(hit),
-                           _mm256_castsi256_ps(_mm256_set1_epi32(std::int32_t(k))));
-                    update(reinterpret_cast<float*>(current),
-                           _mm256_castsi256_ps(_mm256_set1_epi32(prim)));
-                    hits = lanes.accepted;
-                }
-                for (unsigned pending = lanes.scalar; pending; pending &= pending - 1) {
-                    const int l = std::countr_zero(pending);
-                    const WatertightRay wray = make_watertight_ray(stream.ray(i + std::size_t(l)));
-                    TriangleHit h;
-                    if (!intersect_triangle(wray, scene_.triangles[node.tris[k]],
-                                            stream.tmin[i + std::size_t(l)], t_far[l], h))
-                        continue;
-                    t_far[l] = h.t, u[l] = h.u, v[l] = h.v, hit[l] = std::int32_t(k);
-                    current[l] = prim;
-                    hits |= 1u << l;
-                }
-                if constexpr (Q == Query::any) {
-                    for (unsigned done = hits; done; done &= done - 1)
-                        tested[std::countr_zero(done)] = std::uint32_t(k + 1);
-                    active &= ~hits;
-                }
-            }
-            for (unsigned lanes = traced; lanes; lanes &= lanes - 1) {
-                const int l = std::countr_zero(lanes);
-                const std::uint32_t r = stream.id[i + std::size_t(l)];
-                if (hit[l] >= 0) {
-                    record_hit(node, r, node.tris[hit[l]], {t_far[l], u[l], v[l]});
-                    stream.t_far[i + std::size_t(l)] = Q == Query::any ? -kInfinity : t_far[l];
-                }
-                obs_.leaf_ray(r, tested[l]);
-                tests += tested[l];
-            }
-        }
-        return tests;
-    }
-
-    /// Prefetches the hits of the rays at stream positions [begin, end), which a leaf reads
-    /// (a closest-hit ray's current hit) and writes on a hit, so that the access by ray
-    /// number, random in incoherent sets, overlaps the tests of the rays before them.
-    void prefetch_hits(std::size_t begin, std::size_t end) const {
-        for (std::size_t i = begin; i != end; ++i)
-            _mm_prefetch(reinterpret_cast<const char*>(&batch_.hits[batch_.stream.id[i]]),
-                         _MM_HINT_T0);
-    }
-
-    /// trace_rays prefetches the hit this many rays ahead.
-    static constexpr std::size_t kPrefetchRays = 4;
-
-    /// The rays at stream positions [begin, end), one at a time, against eight triangles at a
-    /// time (the blocks of gather_triangle_blocks). Returns the triangle tests.
-    std::uint64_t trace_rays(const Node& node, const std::vector<TriangleBlock8>& tri_blocks,
-                             std::size_t begin, std::size_t end) {
-        const RayStream& stream = batch_.stream;
-        const std::size_t blocks = (node.tri_count + 7) / 8;
-        const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
-        std::uint64_t tests = 0;
-        for (std::size_t i = begin; i != end; ++i) {
-            prefetch_hits(std::min(i + kPrefetchRays, end), std::min(i + kPrefetchRays + 1, end));
-            float& t_far = stream.t_far[i];
-            if (Q == Query::any && t_far == -kInfinity) continue;
-            const std::uint32_t r = stream.id[i];
-            const float tmin = stream.tmin[i];
-            const WatertightRay wray = make_watertight_ray(stream.ray(i));
-            std::int32_t current = kSkipsCurrentHit ? batch_.hits[r].prim : -1;
-            std::size_t tested = node.tri_count;
-            for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
-                TriangleLanes8 lanes;
-                intersect_triangle8(wray, tri_blocks[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
-                                    t_far, lanes);
-                // In triangle order, as the scalar loop: t_far shrinks with each hit.
-                for (unsigned pending = lanes.accepted | lanes.scalar; pending;
-                     pending &= pending - 1) {
-                    const int lane = std::countr_zero(pending);
-                    const std::size_t k = 8 * b + std::size_t(lane);
-                    TriangleHit hit;
-                    if ((kSkipsCurrentHit && std::int32_t(scene_.prims[node.tris[k]]) == current) ||
-                        !resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit))
-                        continue;
-                    record_hit(node, r, node.tris[k], hit);
-                    if constexpr (kSkipsCurrentHit)
-                        current = std::int32_t(scene_.prims[node.tris[k]]);
-                    if constexpr (Q == Query::any) {
-                        t_far = -kInfinity;
-                        tested = k + 1;
-                        break;
-                    }
-                    t_far = hit.t;
-                }
-            }
-            obs_.leaf_ray(r, std::uint32_t(tested));
-            tests += tested;
-        }
-        return tests;
-    }
-
-    /// A lane of the 8-wide test: the float path's hit if within the current t_far, or the
-    /// scalar test's verdict where the float path handed the lane back.
-    bool resolve(const TriangleLanes8& lanes, int lane, const WatertightRay& wray, std::uint32_t t,
-                 float tmin, float t_far, TriangleHit& hit) const {
-        if ((lanes.scalar >> lane) & 1)
-            return intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit);
-        if (!(lanes.t[lane] <= t_far)) return false;
-        hit = {lanes.t[lane], lanes.v[lane] * lanes.inv_det[lane],
-               lanes.w[lane] * lanes.inv_det[lane]};
-        return true;
-    }
-
-    void record_hit(const Node& node, std::uint32_t r, std::uint32_t t, const TriangleHit& hit) {
-        batch_.hits[r] = {hit.t, std::int32_t(scene_.prims[t]), hit.u, hit.v};
-        obs_.hit(r, node);
-    }
-
-    /// A closest-hit ray skips the triangle it has already hit (another piece of a pre-split
-    /// triangle, in this leaf or a later one), which for a large triangle near the eye (a
-    /// loose float distance bound) saves a double-precision refinement. The test depends only
-    /// on the ray, the triangle and [tmin, t_far], and t_far is that hit's t (a ray's t_far
-    /// changes only with its hit, RayStream), so the re-test either rejects or accepts the
-    /// identical t, u, v: either way the hit stays. A tie with another triangle in between
-    /// makes that one the current hit, and the re-test then runs as before. A skipped pair
-    /// still counts as a triangle test in the statistics (the leaf examined it).
-    static constexpr bool kSkipsCurrentHit = Q == Query::closest;
+    /// The observer's per-ray hooks, as the leaf kernels call them.
+    struct LeafHooks {
+        Observer& obs;
+        const Node& node;
+        void hit(std::uint32_t ray) const { obs.hit(ray, node); }
+        void traced(std::uint32_t ray, std::uint32_t tests) const { obs.leaf_ray(ray, tests); }
+    };
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.
     static constexpr std::size_t kParallelLeafTests = 8192;

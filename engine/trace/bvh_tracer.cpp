@@ -9,6 +9,7 @@
 #include <bit>
 
 #include "geometry/ray_box8.h"
+#include "trace/ray_observer.h"
 
 namespace edacrt {
 namespace {
@@ -93,14 +94,15 @@ TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};
     }
-    RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
-    return query == Query::closest ? trace_all<Query::closest>(rays, hits, ray_stats)
-                                   : trace_all<Query::any>(rays, hits, ray_stats);
+    return with_ray_observer(detail, [&](const auto& observer) {
+        return query == Query::closest ? trace_all<Query::closest>(rays, hits, observer)
+                                       : trace_all<Query::any>(rays, hits, observer);
+    });
 }
 
-template <Query Q>
+template <Query Q, class Observer>
 TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
-                                RayStats* ray_stats) const {
+                                const Observer& observer) const {
     const auto trace_range = [&](const tbb::blocked_range<std::size_t>& range, TraceStats stats) {
         struct Entry {  // a child lane: an inner node, or a leaf when count > 0
             std::uint32_t child;
@@ -172,7 +174,7 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
             }
             stats.ray_box_tests += box_tests;
             stats.ray_triangle_tests += triangle_tests;
-            if (ray_stats) ray_stats[i] = {box_tests, triangle_tests, 0, 0};
+            observer.traced(i, box_tests, triangle_tests);
         }
         return stats;
     };

@@ -124,6 +124,12 @@ Triangle awkward_triangle(std::mt19937& rng) {
     return tri;
 }
 
+/// A corner of `tri`, a point on an edge or its centre: where rays test the edge rules.
+glm::vec3 aim_point(const Triangle& tri, std::mt19937& rng) {
+    const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
+    return tri.p0 + w0 * (tri.p1 - tri.p0) + w1 * (tri.p2 - tri.p0);
+}
+
 /// What the eight-lane test decided for lane l, against the scalar test of the same pair:
 /// a lane it decided must match intersect_triangle bit for bit; a lane it handed back is
 /// counted.
@@ -161,9 +167,7 @@ TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
         pack_triangle_blocks(8, [&](std::size_t l) { return tris[l]; }, {&block, 1});
         Ray ray = awkward_ray(rng);
         const Triangle& target = tris[rng() % 8];
-        const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
-        const glm::vec3 aim =
-            target.p0 + w0 * (target.p1 - target.p0) + w1 * (target.p2 - target.p0);
+        const glm::vec3 aim = aim_point(target, rng);
         if (rng() % 2 && aim != ray.org) ray.dir = aim - ray.org;
         const WatertightRay wray = make_watertight_ray(ray);
         const unsigned valid = rng() % 4 == 0 ? unsigned(rng() % 256) : 0xffu;
@@ -196,8 +200,7 @@ TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides)
         for (int l = 0; l < 8; ++l) {
             Ray& ray = rays[l];
             ray = awkward_ray(rng);
-            const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
-            const glm::vec3 aim = tri.p0 + w0 * (tri.p1 - tri.p0) + w1 * (tri.p2 - tri.p0);
+            const glm::vec3 aim = aim_point(tri, rng);
             if (rng() % 4 != 0 && aim != ray.org) ray.dir = aim - ray.org;
             for (int a = 0; a < 3; ++a) {
                 lane[a][l] = ray.org[a];
@@ -309,9 +312,7 @@ TEST(SimdKernels, LeafKernelsFindTheScalarLoopsHitsInBothShapes) {
                 for (Ray& ray : rays) {
                     ray = awkward_ray(rng);
                     const Triangle& target = triangles[rng() % tri_count];
-                    const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
-                    const glm::vec3 aim =
-                        target.p0 + w0 * (target.p1 - target.p0) + w1 * (target.p2 - target.p0);
+                    const glm::vec3 aim = aim_point(target, rng);
                     if (rng() % 4 != 0 && aim != ray.org) ray.dir = aim - ray.org;
                     if (rng() % 16 == 0) ray.tmax = -kInfinity;
                 }

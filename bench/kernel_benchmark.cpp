@@ -106,13 +106,7 @@ void sampling8(benchmark::State& state) {
     const std::vector<Aabb> boxes = candidates();
     Boxes8 blocks[2];
     for (int side = 0; side < 2; ++side)
-        for (int l = 0; l < 8; ++l) {
-            const Aabb box = l < 7 ? boxes[std::size_t(7 * side + l)] : Aabb{};
-            for (int k = 0; k < 3; ++k) {
-                blocks[side].lo[k][l] = box.lo[k];
-                blocks[side].hi[k][l] = box.hi[k];
-            }
-        }
+        blocks[side] = pack_boxes8(7, [&](int l) { return boxes[std::size_t(7 * side + l)]; });
     std::size_t i = 0;
     for (auto _ : state) {
         const SlabRay1x8 ray = make_slab_ray1x8(make_slab_ray(data().rays[i++ & 0xfffff]));
@@ -155,13 +149,9 @@ const Leaf& leaf() {
         Leaf l;
         const auto& all = data().triangles;
         l.triangles.assign(all.begin(), all.begin() + 16);
-        for (std::size_t k = 0; k < 16; ++k) {
-            const Triangle& t = l.triangles[k];
-            const glm::vec3* corners[3] = {&t.p0, &t.p1, &t.p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) l.blocks[k / 8].p[c][a][k % 8] = (*corners[c])[a];
-            l.corners[k] = make_triangle_corners(t);
-        }
+        pack_triangle_blocks(
+            16, [&](std::size_t k) { return l.triangles[k]; }, l.blocks);
+        for (std::size_t k = 0; k < 16; ++k) l.corners[k] = make_triangle_corners(l.triangles[k]);
         std::mt19937 rng(2);
         std::uniform_real_distribution<float> unit(0.0f, 1.0f);
         for (int i = 0; i < 4096; ++i) {

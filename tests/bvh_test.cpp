@@ -113,21 +113,13 @@ TEST(BoxKernel, EightLanesMatchTheScalarTest) {
     };
     std::size_t hits = 0;
     for (int trial = 0; trial < 20000; ++trial) {
-        Boxes8 boxes;
         Aabb scalar[8];
         const int used = 1 + int(rng() % 8);
-        for (int lane = 0; lane < 8; ++lane) {
-            Aabb box;
-            if (lane < used) {
-                box.extend(glm::vec3(coordinate(), coordinate(), coordinate()));
-                box.extend(glm::vec3(coordinate(), coordinate(), coordinate()));
-            }
-            scalar[lane] = box;
-            for (int axis = 0; axis < 3; ++axis) {
-                boxes.lo[axis][lane] = box.lo[axis];
-                boxes.hi[axis][lane] = box.hi[axis];
-            }
+        for (int lane = 0; lane < used; ++lane) {
+            scalar[lane].extend(glm::vec3(coordinate(), coordinate(), coordinate()));
+            scalar[lane].extend(glm::vec3(coordinate(), coordinate(), coordinate()));
         }
+        const Boxes8 boxes = pack_boxes8(used, [&](int lane) { return scalar[lane]; });
         Ray ray{{coordinate(), coordinate(), coordinate()}, {unit(rng), unit(rng), unit(rng)}};
         for (int axis = 0; axis < 3; ++axis)
             if (rng() % 3 == 0) ray.dir[axis] = rng() % 2 ? 0.0f : -0.0f;

@@ -1,8 +1,9 @@
 // The AVX2 kernels against the scalar tests they replace, bit for bit, on random and
 // adversarial inputs: the slab test on eight lanes (intersect_box8), the triangle test on
 // eight triangles and on eight rays (intersect_triangle8, intersect_rays8: what they decide
-// must be what intersect_triangle decides, and they may hand any lane back), and the in-place
-// filter (filter_rays), sequential and in parallel blocks.
+// must be what intersect_triangle decides, and they may hand any lane back), the leaf kernels
+// built on them (trace_rays, trace_ray_groups: the scalar loop's hits), and the in-place filter
+// (filter_rays), sequential and in parallel blocks.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -14,6 +15,7 @@
 
 #include "geometry/ray_box8.h"
 #include "geometry/triangle8.h"
+#include "trace/leaf_kernels.h"
 #include "trace/ray_filter.h"
 #include "trace/ray_stream.h"
 
@@ -122,6 +124,12 @@ Triangle awkward_triangle(std::mt19937& rng) {
     return tri;
 }
 
+/// A corner of `tri`, a point on an edge or its centre: where rays test the edge rules.
+glm::vec3 aim_point(const Triangle& tri, std::mt19937& rng) {
+    const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
+    return tri.p0 + w0 * (tri.p1 - tri.p0) + w1 * (tri.p2 - tri.p0);
+}
+
 /// What the eight-lane test decided for lane l, against the scalar test of the same pair:
 /// a lane it decided must match intersect_triangle bit for bit; a lane it handed back is
 /// counted.
@@ -153,19 +161,13 @@ TEST(SimdKernels, TriangleTestOnEightLanesDecidesOnlyWhatTheScalarTestDecides) {
     LaneOutcomes outcomes;
     for (int round = 0; round < 40000; ++round) {
         // Rays aimed at a triangle's corner, edge or inside, or anywhere.
-        TriangleBlock8 block;
         Triangle tris[8];
-        for (int l = 0; l < 8; ++l) {
-            tris[l] = awkward_triangle(rng);
-            const glm::vec3* corners[3] = {&tris[l].p0, &tris[l].p1, &tris[l].p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) block.p[c][a][l] = (*corners[c])[a];
-        }
+        for (Triangle& tri : tris) tri = awkward_triangle(rng);
+        TriangleBlock8 block;
+        pack_triangle_blocks(8, [&](std::size_t l) { return tris[l]; }, {&block, 1});
         Ray ray = awkward_ray(rng);
         const Triangle& target = tris[rng() % 8];
-        const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
-        const glm::vec3 aim =
-            target.p0 + w0 * (target.p1 - target.p0) + w1 * (target.p2 - target.p0);
+        const glm::vec3 aim = aim_point(target, rng);
         if (rng() % 2 && aim != ray.org) ray.dir = aim - ray.org;
         const WatertightRay wray = make_watertight_ray(ray);
         const unsigned valid = rng() % 4 == 0 ? unsigned(rng() % 256) : 0xffu;
@@ -198,8 +200,7 @@ TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides)
         for (int l = 0; l < 8; ++l) {
             Ray& ray = rays[l];
             ray = awkward_ray(rng);
-            const float w0 = float(rng() % 3) / 2.0f, w1 = float(rng() % 3) / 2.0f;
-            const glm::vec3 aim = tri.p0 + w0 * (tri.p1 - tri.p0) + w1 * (tri.p2 - tri.p0);
+            const glm::vec3 aim = aim_point(tri, rng);
             if (rng() % 4 != 0 && aim != ray.org) ray.dir = aim - ray.org;
             for (int a = 0; a < 3; ++a) {
                 lane[a][l] = ray.org[a];
@@ -236,6 +237,94 @@ TEST(SimdKernels, EightRaysAgainstOneTriangleDecideOnlyWhatTheScalarTestDecides)
     EXPECT_GT(outcomes.accepted, 400);  // (see above: the awkward corners)
     EXPECT_GT(outcomes.rejected, 30000);
     EXPECT_GT(outcomes.handed_back, 1000);
+}
+
+/// Both leaf kernels on the rays at stream positions [begin, end) against the scalar loop over
+/// the leaf's triangles in order: the same hits to the bit, the same t_far left in the stream,
+/// the same triangle tests. Adds the rays the scalar loop found a hit for to `found`.
+template <Query Q>
+void check_leaf_kernels(const std::vector<Ray>& rays, const LeafTriangles& leaf, std::size_t begin,
+                        std::size_t end, int& found) {
+    std::vector<Hit> expected(rays.size());
+    std::uint64_t expected_tests = 0;
+    for (std::size_t i = begin; i != end; ++i) {
+        const Ray& ray = rays[i];
+        if (Q == Query::any && ray.tmax == -kInfinity) continue;  // finished
+        const WatertightRay wray = make_watertight_ray(ray);
+        float t_far = ray.tmax;
+        std::size_t tests = leaf.count;
+        for (std::size_t k = 0; k < leaf.count; ++k) {
+            TriangleHit h;
+            if (!intersect_triangle(wray, leaf.triangle(k), ray.tmin, t_far, h)) continue;
+            expected[i] = {h.t, leaf.prim(k), h.u, h.v};
+            t_far = h.t;
+            if (Q == Query::any) {
+                tests = k + 1;
+                break;
+            }
+        }
+        found += expected[i].hit();
+        expected_tests += tests;
+    }
+    for (const bool groups : {false, true}) {
+        RayStreamStorage storage;
+        std::vector<Hit> hits(rays.size());
+        const RayBatch batch{storage.fill(rays), hits.data()};
+        LeafScratch scratch;
+        std::uint64_t tests;
+        if (groups) {
+            scratch.pack_corners(leaf);
+            tests = trace_ray_groups<Q>(batch, begin, end, leaf, scratch.corners, scratch.prims,
+                                        NullLeafObserver{});
+        } else {
+            scratch.pack_blocks(leaf);
+            tests = trace_rays<Q>(batch, begin, end, leaf, scratch.blocks, NullLeafObserver{});
+        }
+        EXPECT_EQ(tests, expected_tests) << (groups ? "groups" : "rays");
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            const Hit& a = hits[i];
+            const Hit& b = expected[i];
+            ASSERT_EQ(a.prim, b.prim) << (groups ? "groups" : "rays") << ", ray " << i;
+            ASSERT_TRUE(same_bits(a.t, b.t) && same_bits(a.u, b.u) && same_bits(a.v, b.v));
+            const float t_far = !b.hit() ? rays[i].tmax : Q == Query::any ? -kInfinity : b.t;
+            ASSERT_TRUE(same_bits(batch.stream.t_far[i], t_far)) << "ray " << i;
+        }
+    }
+}
+
+TEST(SimdKernels, LeafKernelsFindTheScalarLoopsHitsInBothShapes) {
+    std::mt19937 rng(17);
+    int found = 0;
+    for (const std::size_t tri_count : {1, 5, 8, 9, 16, 23}) {
+        for (const std::size_t n : {1, 7, 8, 13, 40}) {
+            for (int round = 0; round < 30; ++round) {
+                std::vector<Triangle> triangles(tri_count);
+                for (Triangle& tri : triangles) tri = awkward_triangle(rng);
+                // The leaf lists the frame's triangles in an order of its own.
+                std::vector<std::uint32_t> tris(tri_count), prims(tri_count);
+                for (std::size_t k = 0; k < tri_count; ++k) {
+                    tris[k] = std::uint32_t(tri_count - 1 - k);
+                    prims[k] = std::uint32_t(100 + k);
+                }
+                const LeafTriangles leaf{tris.data(), tri_count, triangles.data(), prims.data()};
+                // Rays mostly aimed at a triangle's corner, edge or inside; some finished.
+                std::vector<Ray> rays(n);
+                for (Ray& ray : rays) {
+                    ray = awkward_ray(rng);
+                    const Triangle& target = triangles[rng() % tri_count];
+                    const glm::vec3 aim = aim_point(target, rng);
+                    if (rng() % 4 != 0 && aim != ray.org) ray.dir = aim - ray.org;
+                    if (rng() % 16 == 0) ray.tmax = -kInfinity;
+                }
+                const std::size_t begin = n > 2 ? rng() % 3 : 0;
+                ASSERT_NO_FATAL_FAILURE(
+                    check_leaf_kernels<Query::closest>(rays, leaf, begin, n, found));
+                ASSERT_NO_FATAL_FAILURE(
+                    check_leaf_kernels<Query::any>(rays, leaf, begin, n, found));
+            }
+        }
+    }
+    EXPECT_GT(found, 1000);
 }
 
 /// A stream of `n` awkward rays, some already finished (t_far = -inf).

@@ -22,6 +22,30 @@ struct alignas(32) Boxes8 {
     float hi[3][8];
 };
 
+inline void set_lane(Boxes8& boxes, int lane, const Aabb& box) {
+    for (int axis = 0; axis < 3; ++axis) {
+        boxes.lo[axis][lane] = box.lo[axis];
+        boxes.hi[axis][lane] = box.hi[axis];
+    }
+}
+
+inline Aabb lane_box(const Boxes8& boxes, int lane) {
+    Aabb box;
+    for (int axis = 0; axis < 3; ++axis) {
+        box.lo[axis] = boxes.lo[axis][lane];
+        box.hi[axis] = boxes.hi[axis][lane];
+    }
+    return box;
+}
+
+/// box(0) .. box(count - 1) (count <= 8) in lanes 0, 1, ..., the empty box in the others.
+template <class BoxAt>
+Boxes8 pack_boxes8(int count, const BoxAt& box) {
+    Boxes8 boxes;
+    for (int lane = 0; lane < 8; ++lane) set_lane(boxes, lane, lane < count ? box(lane) : Aabb{});
+    return boxes;
+}
+
 /// One ray prepared for intersect_boxes8: per axis, which side is near (by the sign of 1/dir),
 /// and the origin and 1/dir in all lanes.
 struct SlabRay1x8 {

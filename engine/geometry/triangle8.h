@@ -8,6 +8,10 @@
 // scalar loop.
 #include <immintrin.h>
 
+#include <cstddef>
+#include <span>
+
+#include "geometry/simd8.h"
 #include "geometry/triangle.h"
 
 namespace edacrt {
@@ -17,33 +21,28 @@ struct TriangleBlock8 {
     alignas(32) float p[3][3][8];
 };
 
+inline void set_lane(TriangleBlock8& block, int lane, const Triangle& tri) {
+    const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
+    for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) block.p[c][a][lane] = (*corners[c])[a];
+}
+
+/// Packs triangle(0) .. triangle(count - 1) for intersect_triangle8: triangle k in lane k % 8
+/// of blocks[k / 8]. The last block's spare lanes hold zero triangles, which callers leave out
+/// of `valid`. `blocks` holds at least (count + 7) / 8 blocks.
+template <class TriangleAt>
+void pack_triangle_blocks(std::size_t count, const TriangleAt& triangle,
+                          std::span<TriangleBlock8> blocks) {
+    for (std::size_t k = 0; k < (count + 7) / 8 * 8; ++k)
+        set_lane(blocks[k / 8], int(k % 8), k < count ? triangle(k) : Triangle{});
+}
+
 /// What the float path decided for eight triangles.
 struct TriangleLanes8 {
     unsigned accepted = 0;  // a hit at t in [tmin, tmax], barycentrics v, w times inv_det
     unsigned scalar = 0;    // undecided: the caller runs intersect_triangle on these
     alignas(32) float t[8], v[8], w[8], inv_det[8];
 };
-
-namespace simd8 {
-
-inline __m256 set(float x) { return _mm256_set1_ps(x); }
-inline __m256 abs(__m256 x) { return _mm256_andnot_ps(set(-0.0f), x); }
-inline __m256 mul(__m256 a, __m256 b) { return _mm256_mul_ps(a, b); }
-inline __m256 add(__m256 a, __m256 b) { return _mm256_add_ps(a, b); }
-inline __m256 sub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
-inline __m256 any(__m256 a, __m256 b) { return _mm256_or_ps(a, b); }
-inline __m256 any(__m256 a, __m256 b, __m256 c) { return any(any(a, b), c); }
-inline __m256 all(__m256 a, __m256 b) { return _mm256_and_ps(a, b); }
-/// std::max(a, b), i.e. a < b ? b : a: a NaN in a is kept, as in the scalar code.
-inline __m256 max(__m256 a, __m256 b) { return _mm256_max_ps(b, a); }
-/// std::max({a, b, c}).
-inline __m256 max(__m256 a, __m256 b, __m256 c) { return max(max(a, b), c); }
-template <int Cmp>
-inline __m256 cmp(__m256 a, __m256 b) {
-    return _mm256_cmp_ps(a, b, Cmp);
-}
-
-}  // namespace simd8
 
 /// Eight ray/triangle pairs in their rays' frames (shear_triangle's x, y, z of the corners
 /// A, B, C), with the rays' |dir[kx]|, |dir[ky]| for the distance error bound.

@@ -9,6 +9,7 @@
 #include <bit>
 
 #include "geometry/ray_box8.h"
+#include "trace/ray_observer.h"
 
 namespace edacrt {
 namespace {
@@ -49,12 +50,6 @@ UpdateWork BvhTracer::update(const Scene& scene, SceneUpdate how) {
 }
 
 void BvhTracer::refit(const Scene& scene) {
-    const auto set_lane = [](Bvh8Node& node, int lane, const Aabb& box) {
-        for (int axis = 0; axis < 3; ++axis) {
-            node.boxes.lo[axis][lane] = box.lo[axis];
-            node.boxes.hi[axis][lane] = box.hi[axis];
-        }
-    };
     const auto used = [](const Bvh8Node& node, int lane) {
         return node.boxes.lo[0][lane] != kInfinity;  // unused lanes hold empty boxes
     };
@@ -70,7 +65,7 @@ void BvhTracer::refit(const Scene& scene) {
                     leaf_triangles_[k] = scene.corners(bvh_prims_[k]);
                     box.extend(conservative_bounds(leaf_triangles_[k]));
                 }
-                set_lane(node, lane, box);
+                set_lane(node.boxes, lane, box);
             }
         }
     });
@@ -82,12 +77,8 @@ void BvhTracer::refit(const Scene& scene) {
             if (!used(node, lane) || node.count[lane] != 0) continue;
             const Bvh8Node& child = wide_[node.child[lane]];
             Aabb box;
-            for (int c = 0; c < 8 && used(child, c); ++c)
-                for (int axis = 0; axis < 3; ++axis) {
-                    box.lo[axis] = std::min(box.lo[axis], child.boxes.lo[axis][c]);
-                    box.hi[axis] = std::max(box.hi[axis], child.boxes.hi[axis][c]);
-                }
-            set_lane(node, lane, box);
+            for (int c = 0; c < 8 && used(child, c); ++c) box.extend(lane_box(child.boxes, c));
+            set_lane(node.boxes, lane, box);
         }
     }
 }
@@ -103,14 +94,15 @@ TraceStats BvhTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits
         std::fill(hits.begin(), hits.end(), Hit{});
         return {rays.size(), 0, 0};
     }
-    RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
-    return query == Query::closest ? trace_all<Query::closest>(rays, hits, ray_stats)
-                                   : trace_all<Query::any>(rays, hits, ray_stats);
+    return with_ray_observer(detail, [&](const auto& observer) {
+        return query == Query::closest ? trace_all<Query::closest>(rays, hits, observer)
+                                       : trace_all<Query::any>(rays, hits, observer);
+    });
 }
 
-template <Query Q>
+template <Query Q, class Observer>
 TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
-                                RayStats* ray_stats) const {
+                                const Observer& observer) const {
     const auto trace_range = [&](const tbb::blocked_range<std::size_t>& range, TraceStats stats) {
         struct Entry {  // a child lane: an inner node, or a leaf when count > 0
             std::uint32_t child;
@@ -182,7 +174,7 @@ TraceStats BvhTracer::trace_all(std::span<const Ray> rays, std::span<Hit> hits,
             }
             stats.ray_box_tests += box_tests;
             stats.ray_triangle_tests += triangle_tests;
-            if (ray_stats) ray_stats[i] = {box_tests, triangle_tests, 0, 0};
+            observer.traced(i, box_tests, triangle_tests);
         }
         return stats;
     };

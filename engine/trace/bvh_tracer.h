@@ -31,8 +31,10 @@ class BvhTracer final : public Tracer {
     /// build computes them, so the hits stay exact.
     void refit(const Scene& scene);
 
-    template <Query Q>
-    TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits, RayStats* ray_stats) const;
+    /// The batch, counting per ray through `observer` (ray_observer.h).
+    template <Query Q, class Observer>
+    TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits,
+                         const Observer& observer) const;
 
     std::vector<Bvh8Node> wide_;
     std::vector<std::uint32_t> bvh_prims_;

@@ -41,19 +41,12 @@ class Collapser {
         const std::uint32_t position = std::uint32_t(wide_.size());
         wide_.emplace_back();
         Bvh8Node& out = wide_.back();
-        for (int axis = 0; axis < 3; ++axis) {
-            std::fill_n(out.boxes.lo[axis], 8, kInfinity);
-            std::fill_n(out.boxes.hi[axis], 8, -kInfinity);
-        }
+        out.boxes = pack_boxes8(size, [&](int i) { return binary_[children[i]].box; });
         std::fill_n(out.child, 8, 0u);
         std::fill_n(out.count, 8, 0u);
         for (int i = 0; i < size; ++i) {
             const BvhNode& child = binary_[children[i]];
             assert(!child.box.empty());  // an empty box would read as an unused lane
-            for (int axis = 0; axis < 3; ++axis) {
-                out.boxes.lo[axis][i] = child.box.lo[axis];
-                out.boxes.hi[axis][i] = child.box.hi[axis];
-            }
             out.child[i] = child.first;
             out.count[i] = child.count;
         }

@@ -21,12 +21,11 @@
 #include "geometry/aabb.h"
 #include "geometry/binning.h"
 #include "geometry/ray.h"
-#include "geometry/ray_box.h"
-#include "geometry/ray_box8.h"
 #include "geometry/triangle.h"
-#include "geometry/triangle8.h"
 #include "trace/edacrt_params.h"
+#include "trace/leaf_kernels.h"
 #include "trace/ray_filter.h"
+#include "trace/ray_sampling.h"
 #include "trace/ray_stream.h"
 #include "trace/stable_partition.h"
 #include "trace/trace_stats.h"
@@ -43,13 +42,6 @@ struct EdacrtScene {
     FrameVector<glm::vec3> centroids;
     FrameVector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
     Aabb box;
-};
-
-/// One batch: the stream the recursion partitions, and the hits, indexed by the ray's number
-/// (its id in the stream).
-struct RayBatch {
-    RayStream stream;
-    Hit* hits;
 };
 
 /// A subproblem: the rays that reach V, and the triangles whose bounds make up V.
@@ -112,29 +104,19 @@ inline constexpr int kMaxDepth = 160;
 /// uses it only between its nested parallel calls, which run isolated, so no other node's work
 /// can interleave on the thread meanwhile.
 struct RecursionScratch {
-    struct Counters {  // a block of eight candidates' sampling counts
-        __m256i lanes;
-    };
     PartitionScratch partition;  // of the triangles
     std::vector<Bin> bins;
     std::vector<BinSplit> splits;
-    std::vector<std::uint32_t> left_hits, right_hits, left_first, right_first;
-    std::vector<Boxes8> left_boxes, right_boxes;  // the candidates' boxes, eight at a time
-    std::vector<Counters> counters;               // four per block of candidates
-    std::vector<TriangleBlock8> tri_blocks;       // a leaf's triangles, eight at a time
-    std::vector<TriangleCorners> tri_corners;     // or one at a time
-    std::vector<std::int32_t> tri_prims;          // with their scene triangles
+    SampleCounts sampling;
+    LeafScratch leaf;
 
     void reserve(int k, std::size_t triangles) {
-        const auto K = std::size_t(k), blocks = (K + 6) / 8;
+        const auto K = std::size_t(k);
         partition.reserve(triangles);
         if (bins.size() == K) return;
         bins.resize(K);
         splits.resize(K - 1);
-        for (auto* v : {&left_hits, &right_hits, &left_first, &right_first}) v->resize(K);
-        left_boxes.resize(blocks);
-        right_boxes.resize(blocks);
-        counters.resize(4 * blocks);
+        sampling.resize(k);
     }
 };
 using RecursionScratches = tbb::enumerable_thread_specific<RecursionScratch>;
@@ -288,8 +270,8 @@ class Recursion {
                 continue;
             }
             if (sampled_alpha) {
-                c.alpha_left = float(sc.left_hits[j]) / float(samples);
-                c.alpha_right = float(sc.right_hits[j]) / float(samples);
+                c.alpha_left = float(sc.sampling.left_hits[j]) / float(samples);
+                c.alpha_right = float(sc.sampling.right_hits[j]) / float(samples);
             } else {  // the surface-area heuristic's conditional probabilities
                 c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
                 c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
@@ -313,7 +295,7 @@ class Recursion {
         split.box[0] = sc.splits[best].left;
         split.box[1] = sc.splits[best].right;
         if (sampled && p_.order == TraversalOrder::sampled)
-            split.first = sc.left_first[best] >= sc.right_first[best] ? 0 : 1;
+            split.first = sc.sampling.left_first[best] >= sc.sampling.right_first[best] ? 0 : 1;
         else if (p_.order == TraversalOrder::left_first)
             split.first = 0;
         else  // the near child by the majority sign of the rays' direction on the axis
@@ -371,10 +353,9 @@ class Recursion {
                                  [](const Bin& b) { return b.count > 0; }));
     }
 
-    /// Ray sampling (Section 3.2): for every candidate, how many sampled rays hit each child
-    /// box, and which child each enters first. A ray that starts inside both boxes enters them
-    /// at the same distance; it counts for the child on the side it comes from along the split
-    /// axis. Returns the number of samples, 0 when this node takes surface-area ratios instead.
+    /// Ray sampling (Section 3.2, ray_sampling.h): for every candidate, how many sampled rays
+    /// hit each child box, and which child each enters first. Returns the number of samples,
+    /// 0 when this node takes surface-area ratios instead.
     std::uint32_t estimate_hit_ratios(const Node& node, int axis, RecursionScratch& sc) {
         const bool wanted =
             p_.hit_ratio == HitRatio::sampled || p_.order == TraversalOrder::sampled;
@@ -394,81 +375,16 @@ class Recursion {
         else if (small && p_.small_nodes == SmallNodes::scaled)
             samples = std::uint32_t(
                 std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1, p_.sample_count));
-        const int candidates = p_.bins - 1;
-        const std::uint32_t node_seed = hash_combine(
-            hash_combine(p_.seed, std::uint32_t(node.depth)), std::uint32_t(node.ray_count));
-        const auto tests_per_sample = std::uint32_t(2 * candidates);
+        const auto tests_per_sample = std::uint32_t(2 * (p_.bins - 1));
         box_tests_ += std::uint64_t(samples) * tests_per_sample;
         obs_.sampled(node, samples, std::uint64_t(samples) * tests_per_sample);
-        // Eight candidates at a time: each sampled ray against eight left and eight right
-        // boxes, the per-candidate counts kept in vector lanes.
-        const int blocks = (candidates + 7) / 8;
-        for (int b = 0; b < blocks; ++b) {
-            Aabb left[8], right[8];  // empty boxes pad the last block
-            for (int l = 0; l < 8 && 8 * b + l < candidates; ++l) {
-                left[l] = sc.splits[std::size_t(8 * b + l)].left;
-                right[l] = sc.splits[std::size_t(8 * b + l)].right;
-            }
-            sc.left_boxes[b] = gather(left);
-            sc.right_boxes[b] = gather(right);
-
-            std::fill_n(&sc.counters[4 * b], 4, RecursionScratch::Counters{_mm256_setzero_si256()});
-        }
-        const RayStream& stream = batch_.stream;
-        for (std::uint32_t s = 0; s < samples; ++s) {
-            const std::size_t i =
-                node.ray_begin +
-                (draw ? std::size_t((std::uint64_t(hash_combine(node_seed, s)) * node.ray_count) >>
-                                    32)
-                      : s);
-            obs_.sampled_ray(stream.id[i], tests_per_sample);
-            const SlabRay1x8 ray = make_slab_ray1x8(stream.slab_ray(i));
-            const float t_far = stream.t_far[i];
-            const __m256 left_on_tie =
-                _mm256_castsi256_ps(_mm256_set1_epi32(std::signbit(stream.dir[axis][i]) ? 0 : -1));
-            for (int b = 0; b < blocks; ++b) {
-                __m256 left_entry, right_entry;
-                const __m256 left =
-                    lane_mask(unsigned(intersect_boxes8(ray, sc.left_boxes[b], t_far, left_entry)));
-                const __m256 right = lane_mask(
-                    unsigned(intersect_boxes8(ray, sc.right_boxes[b], t_far, right_entry)));
-                const __m256 left_nearer = _mm256_or_ps(
-                    _mm256_cmp_ps(left_entry, right_entry, _CMP_LT_OQ),
-                    _mm256_and_ps(_mm256_cmp_ps(left_entry, right_entry, _CMP_EQ_OQ), left_on_tie));
-                // left && (!right || left_nearer), right && (!left || !left_nearer)
-                const __m256 left_first =
-                    _mm256_and_ps(left, _mm256_or_ps(_mm256_andnot_ps(right, left), left_nearer));
-                const __m256 right_first =
-                    _mm256_andnot_ps(_mm256_and_ps(left, left_nearer), right);
-                const __m256 masks[4] = {left, right, left_first, right_first};
-                for (int k = 0; k < 4; ++k)  // a true lane is -1: subtracting counts it
-                    sc.counters[4 * b + k].lanes = _mm256_sub_epi32(sc.counters[4 * b + k].lanes,
-                                                                    _mm256_castps_si256(masks[k]));
-            }
-        }
-        for (int j = 0; j < candidates; ++j) {
-            const auto lane = [&](int k) {
-                alignas(32) std::uint32_t lanes[8];
-                _mm256_store_si256(reinterpret_cast<__m256i*>(lanes),
-                                   sc.counters[4 * (j / 8) + k].lanes);
-                return lanes[j % 8];
-            };
-            sc.left_hits[j] = lane(0);
-            sc.right_hits[j] = lane(1);
-            sc.left_first[j] = lane(2);
-            sc.right_first[j] = lane(3);
-        }
+        const RaySample sample{samples, draw,
+                               hash_combine(hash_combine(p_.seed, std::uint32_t(node.depth)),
+                                            std::uint32_t(node.ray_count))};
+        sample_rays(batch_.stream, node.ray_begin, node.ray_count, sample, axis,
+                    std::span<const BinSplit>(sc.splits), sc.sampling,
+                    [&](std::uint32_t ray) { obs_.sampled_ray(ray, tests_per_sample); });
         return samples;
-    }
-
-    static Boxes8 gather(const Aabb (&boxes)[8]) {
-        Boxes8 b;
-        for (int k = 0; k < 3; ++k)
-            for (int l = 0; l < 8; ++l) {
-                b.lo[k][l] = boxes[l].lo[k];
-                b.hi[k][l] = boxes[l].hi[k];
-            }
-        return b;
     }
 
     std::size_t count_negative(const Node& node, int axis) const {
@@ -491,24 +407,29 @@ class Recursion {
     /// unfiltered) is skipped.
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
-        RecursionScratch& sc = scratch();
+        LeafScratch& sc = scratch().leaf;
+        const LeafTriangles tris{node.tris, node.tri_count, scene_.triangles.data(),
+                                 scene_.prims.data()};
         const std::size_t groups = (node.ray_count + 7) / 8, blocks = (node.tri_count + 7) / 8;
         const bool by_groups = groups * node.tri_count <= node.ray_count * blocks;
         if (by_groups)
-            gather_triangle_corners(node, sc.tri_corners, sc.tri_prims);
+            sc.pack_corners(tris);
         else
-            gather_triangle_blocks(node, sc.tri_blocks);
+            sc.pack_blocks(tris);
+        const LeafHooks hooks{obs_, node};
+        const std::size_t rays_end = node.ray_begin + node.ray_count;
         const auto trace = [&](const tbb::blocked_range<std::size_t>& range, std::uint64_t tests) {
-            return tests + (by_groups
-                                ? trace_ray_groups(node, sc.tri_corners, sc.tri_prims,
-                                                   range.begin(), range.end())
-                                : trace_rays(node, sc.tri_blocks, range.begin(), range.end()));
+            if (!by_groups)
+                return tests +
+                       trace_rays<Q>(batch_, range.begin(), range.end(), tris, sc.blocks, hooks);
+            return tests + trace_ray_groups<Q>(batch_, node.ray_begin + 8 * range.begin(),
+                                               std::min(node.ray_begin + 8 * range.end(), rays_end),
+                                               tris, sc.corners, sc.prims, hooks);
         };
         // Over groups of eight rays, or over rays.
         const tbb::blocked_range<std::size_t> all =
             by_groups ? tbb::blocked_range<std::size_t>(0, groups, 2)
-                      : tbb::blocked_range<std::size_t>(node.ray_begin,
-                                                        node.ray_begin + node.ray_count, 16);
+                      : tbb::blocked_range<std::size_t>(node.ray_begin, rays_end, 16);
         const std::uint64_t tests =
             node.ray_count * node.tri_count < kParallelLeafTests ? trace(all, 0) : isolated([&] {
                 return tbb::parallel_reduce(all, std::uint64_t(0), trace, std::plus<>());
@@ -517,218 +438,13 @@ class Recursion {
         obs_.leaf(visit, node, tests);
     }
 
-    /// The leaf's triangles as blocks of eight for trace_rays.
-    void gather_triangle_blocks(const Node& node, std::vector<TriangleBlock8>& tri_blocks) {
-        const std::size_t blocks = (node.tri_count + 7) / 8;
-        tri_blocks.resize(std::max(tri_blocks.size(), blocks));
-        for (std::size_t k = 0; k < blocks * 8; ++k) {
-            TriangleBlock8& block = tri_blocks[k / 8];
-            const Triangle tri = k < node.tri_count ? scene_.triangles[node.tris[k]] : Triangle{};
-            const glm::vec3* corners[3] = {&tri.p0, &tri.p1, &tri.p2};
-            for (int c = 0; c < 3; ++c)
-                for (int a = 0; a < 3; ++a) block.p[c][a][k % 8] = (*corners[c])[a];
-        }
-    }
-
-    /// The leaf's triangles, one at a time, and the scene triangle of each, for
-    /// trace_ray_groups.
-    void gather_triangle_corners(const Node& node, std::vector<TriangleCorners>& corners,
-                                 std::vector<std::int32_t>& prims) {
-        corners.resize(std::max(corners.size(), node.tri_count));
-        prims.resize(std::max(prims.size(), node.tri_count));
-        for (std::size_t k = 0; k < node.tri_count; ++k) {
-            prims[k] = std::int32_t(scene_.prims[node.tris[k]]);
-            corners[k] = make_triangle_corners(scene_.triangles[node.tris[k]]);
-        }
-    }
-
-    /// The node's groups of eight rays [first, end) (stream positions ray_begin + 8 g on; the
-    /// last may be short), each against every triangle in order. Each lane does what
-    /// trace_rays does for its ray: a hit shortens its t_far for the next triangle, and an
-    /// any-hit ray stops at its first hit. Returns the triangle tests.
-    std::uint64_t trace_ray_groups(const Node& node, const std::vector<TriangleCorners>& tris,
-                                   const std::vector<std::int32_t>& prims, std::size_t first,
-                                   std::size_t end) {
-        const RayStream& stream = batch_.stream;
-        std::uint64_t tests = 0;
-        const std::size_t rays_end = node.ray_begin + node.ray_count;
-        for (std::size_t g = first; g != end; ++g) {
-            const std::size_t i = node.ray_begin + 8 * g;
-            const int n = int(std::min<std::size_t>(8, node.ray_count - 8 * g));
-            prefetch_hits(std::min(i + 8, rays_end), std::min(i + 16, rays_end));
-            const __m256i in_group =
-                _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-            const auto load = [&](const float* a) { return _mm256_maskload_ps(a + i, in_group); };
-            const __m256 org[3] = {load(stream.org[0]), load(stream.org[1]), load(stream.org[2])};
-            const __m256 dir[3] = {load(stream.dir[0]), load(stream.dir[1]), load(stream.dir[2])};
-            const WatertightRays8 rays = make_watertight_rays8(org, dir);
-            const __m256 tmin = load(stream.tmin);
-            // Each lane's t_far, and its hit: the triangle's place in the leaf (-1: none), u, v.
-            alignas(32) float t_far[8], u[8] = {}, v[8] = {};
-            alignas(32) std::int32_t hit[8], current[8];  // current: see kSkipsCurrentHit
-            _mm256_store_ps(t_far, load(stream.t_far));
-            std::fill_n(hit, 8, -1);
-            for (int l = 0; l < 8; ++l)
-                current[l] = kSkipsCurrentHit && l < n
-                                 ? batch_.hits[stream.id[i + std::size_t(l)]].prim
-                                 : -1;
-            unsigned active = (1u << n) - 1;
-            if constexpr (Q == Query::any)
-                active &= ~unsigned(_mm256_movemask_ps(
-                    _mm256_cmp_ps(_mm256_load_ps(t_far), _mm256_set1_ps(-kInfinity), _CMP_EQ_OQ)));
-            const unsigned traced = active;
-            std::uint32_t tested[8];
-            std::fill_n(tested, 8, std::uint32_t(node.tri_count));
-            for (std::size_t k = 0; k < node.tri_count && active; ++k) {
-                const std::int32_t prim = prims[k];
-                unsigned candidates = active;
-                if constexpr (kSkipsCurrentHit)
-                    candidates &=
-                        ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                            _mm256_set1_epi32(prim),
-                            _mm256_load_si256(reinterpret_cast<__m256i*>(current))))));
-                if (!candidates) continue;
-                TriangleLanes8 lanes;
-                intersect_rays8(rays, tris[k], tmin, _mm256_load_ps(t_far), candidates, lanes);
-                unsigned hits = 0;
-                if (lanes.accepted) {  // t <= t_far: the lane's ray hits nearer
-                    const __m256 take = lane_mask(lanes.accepted);
-                    const __m256 inv_det = _mm256_load_ps(lanes.inv_det);
-                    const auto update = [&](float* to, __m256 value) {
-                        _mm256_store_ps(to, _mm256_blendv_ps(_mm256_load_ps(to), value, take));
-                    };
-                    update(t_far, _mm256_load_ps(lanes.t));
-                    update(u, _mm256_mul_ps(_mm256_load_ps(lanes.v), inv_det));
-                    update(v, _mm256_mul_ps(_mm256_load_ps(lanes.w), inv_det));
-                    update(reinterpret_cast<float*>(hit),
-                           _mm256_castsi256_ps(_mm256_set1_epi32(std::int32_t(k))));
-                    update(reinterpret_cast<float*>(current),
-                           _mm256_castsi256_ps(_mm256_set1_epi32(prim)));
-                    hits = lanes.accepted;
-                }
-                for (unsigned pending = lanes.scalar; pending; pending &= pending - 1) {
-                    const int l = std::countr_zero(pending);
-                    const WatertightRay wray = make_watertight_ray(stream.ray(i + std::size_t(l)));
-                    TriangleHit h;
-                    if (!intersect_triangle(wray, scene_.triangles[node.tris[k]],
-                                            stream.tmin[i + std::size_t(l)], t_far[l], h))
-                        continue;
-                    t_far[l] = h.t, u[l] = h.u, v[l] = h.v, hit[l] = std::int32_t(k);
-                    current[l] = prim;
-                    hits |= 1u << l;
-                }
-                if constexpr (Q == Query::any) {
-                    for (unsigned done = hits; done; done &= done - 1)
-                        tested[std::countr_zero(done)] = std::uint32_t(k + 1);
-                    active &= ~hits;
-                }
-            }
-            for (unsigned lanes = traced; lanes; lanes &= lanes - 1) {
-                const int l = std::countr_zero(lanes);
-                const std::uint32_t r = stream.id[i + std::size_t(l)];
-                if (hit[l] >= 0) {
-                    record_hit(node, r, node.tris[hit[l]], {t_far[l], u[l], v[l]});
-                    stream.t_far[i + std::size_t(l)] = Q == Query::any ? -kInfinity : t_far[l];
-                }
-                obs_.leaf_ray(r, tested[l]);
-                tests += tested[l];
-            }
-        }
-        return tests;
-    }
-
-    /// Prefetches the hits of the rays at stream positions [begin, end), which a leaf reads
-    /// (a closest-hit ray's current hit) and writes on a hit, so that the access by ray
-    /// number, random in incoherent sets, overlaps the tests of the rays before them.
-    void prefetch_hits(std::size_t begin, std::size_t end) const {
-        for (std::size_t i = begin; i != end; ++i)
-            _mm_prefetch(reinterpret_cast<const char*>(&batch_.hits[batch_.stream.id[i]]),
-                         _MM_HINT_T0);
-    }
-
-    /// trace_rays prefetches the hit this many rays ahead.
-    static constexpr std::size_t kPrefetchRays = 4;
-
-    /// Bit l of a mask to all-ones in lane l.
-    static __m256 lane_mask(unsigned mask) {
-        const __m256i bits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-        return _mm256_castsi256_ps(
-            _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(mask)), bits), bits));
-    }
-
-    /// The rays at stream positions [begin, end), one at a time, against eight triangles at a
-    /// time (the blocks of gather_triangle_blocks). Returns the triangle tests.
-    std::uint64_t trace_rays(const Node& node, const std::vector<TriangleBlock8>& tri_blocks,
-                             std::size_t begin, std::size_t end) {
-        const RayStream& stream = batch_.stream;
-        const std::size_t blocks = (node.tri_count + 7) / 8;
-        const unsigned last_valid = 0xffu >> (blocks * 8 - node.tri_count);
-        std::uint64_t tests = 0;
-        for (std::size_t i = begin; i != end; ++i) {
-            prefetch_hits(std::min(i + kPrefetchRays, end), std::min(i + kPrefetchRays + 1, end));
-            float& t_far = stream.t_far[i];
-            if (Q == Query::any && t_far == -kInfinity) continue;
-            const std::uint32_t r = stream.id[i];
-            const float tmin = stream.tmin[i];
-            const WatertightRay wray = make_watertight_ray(stream.ray(i));
-            std::int32_t current = kSkipsCurrentHit ? batch_.hits[r].prim : -1;
-            std::size_t tested = node.tri_count;
-            for (std::size_t b = 0; b < blocks && tested == node.tri_count; ++b) {
-                TriangleLanes8 lanes;
-                intersect_triangle8(wray, tri_blocks[b], b + 1 < blocks ? 0xffu : last_valid, tmin,
-                                    t_far, lanes);
-                // In triangle order, as the scalar loop: t_far shrinks with each hit.
-                for (unsigned pending = lanes.accepted | lanes.scalar; pending;
-                     pending &= pending - 1) {
-                    const int lane = std::countr_zero(pending);
-                    const std::size_t k = 8 * b + std::size_t(lane);
-                    TriangleHit hit;
-                    if ((kSkipsCurrentHit && std::int32_t(scene_.prims[node.tris[k]]) == current) ||
-                        !resolve(lanes, lane, wray, node.tris[k], tmin, t_far, hit))
-                        continue;
-                    record_hit(node, r, node.tris[k], hit);
-                    if constexpr (kSkipsCurrentHit)
-                        current = std::int32_t(scene_.prims[node.tris[k]]);
-                    if constexpr (Q == Query::any) {
-                        t_far = -kInfinity;
-                        tested = k + 1;
-                        break;
-                    }
-                    t_far = hit.t;
-                }
-            }
-            obs_.leaf_ray(r, std::uint32_t(tested));
-            tests += tested;
-        }
-        return tests;
-    }
-
-    /// A lane of the 8-wide test: the float path's hit if within the current t_far, or the
-    /// scalar test's verdict where the float path handed the lane back.
-    bool resolve(const TriangleLanes8& lanes, int lane, const WatertightRay& wray, std::uint32_t t,
-                 float tmin, float t_far, TriangleHit& hit) const {
-        if ((lanes.scalar >> lane) & 1)
-            return intersect_triangle(wray, scene_.triangles[t], tmin, t_far, hit);
-        if (!(lanes.t[lane] <= t_far)) return false;
-        hit = {lanes.t[lane], lanes.v[lane] * lanes.inv_det[lane],
-               lanes.w[lane] * lanes.inv_det[lane]};
-        return true;
-    }
-
-    void record_hit(const Node& node, std::uint32_t r, std::uint32_t t, const TriangleHit& hit) {
-        batch_.hits[r] = {hit.t, std::int32_t(scene_.prims[t]), hit.u, hit.v};
-        obs_.hit(r, node);
-    }
-
-    /// A closest-hit ray skips the triangle it has already hit (another piece of a pre-split
-    /// triangle, in this leaf or a later one), which for a large triangle near the eye (a
-    /// loose float distance bound) saves a double-precision refinement. The test depends only
-    /// on the ray, the triangle and [tmin, t_far], and t_far is that hit's t (a ray's t_far
-    /// changes only with its hit, RayStream), so the re-test either rejects or accepts the
-    /// identical t, u, v: either way the hit stays. A tie with another triangle in between
-    /// makes that one the current hit, and the re-test then runs as before. A skipped pair
-    /// still counts as a triangle test in the statistics (the leaf examined it).
-    static constexpr bool kSkipsCurrentHit = Q == Query::closest;
+    /// The observer's per-ray hooks, as the leaf kernels call them.
+    struct LeafHooks {
+        Observer& obs;
+        const Node& node;
+        void hit(std::uint32_t ray) const { obs.hit(ray, node); }
+        void traced(std::uint32_t ray, std::uint32_t tests) const { obs.leaf_ray(ray, tests); }
+    };
 
     /// Leaves with at least this many ray-triangle pairs trace their rays in parallel.
     static constexpr std::size_t kParallelLeafTests = 8192;

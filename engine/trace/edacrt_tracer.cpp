@@ -77,9 +77,8 @@ std::size_t EdacrtTracer::scratch_bytes() const {
     std::size_t total = 0;
     for (const RecursionScratch& s : batch_.scratch)
         total += bytes(s.partition.items) + bytes(s.partition.keep) +
-                 bytes(s.partition.block_kept) + bytes(s.tri_blocks) + bytes(s.tri_corners) +
-                 bytes(s.tri_prims) + bytes(s.bins) + bytes(s.splits) + 4 * bytes(s.left_hits) +
-                 2 * bytes(s.left_boxes) + bytes(s.counters);
+                 bytes(s.partition.block_kept) + bytes(s.bins) + bytes(s.splits) +
+                 s.sampling.bytes() + s.leaf.bytes();
     return total;
 }
 

@@ -5,6 +5,8 @@
 
 #include <functional>
 
+#include "trace/ray_observer.h"
+
 namespace edacrt {
 namespace {
 
@@ -24,16 +26,16 @@ std::size_t intersect_all(const Ray& ray, std::span<const Triangle> triangles, H
     return triangles.size();
 }
 
-/// Returns the number of ray-triangle tests; records each ray's in `ray_stats` if given.
-template <Query Q>
+/// Returns the number of ray-triangle tests; each ray's goes to `observer` (ray_observer.h).
+template <Query Q, class Observer>
 std::uint64_t trace_all(std::span<const Triangle> triangles, std::span<const Ray> rays,
-                        std::span<Hit> hits, RayStats* ray_stats) {
+                        std::span<Hit> hits, const Observer& observer) {
     return tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, rays.size(), 64), std::uint64_t{0},
         [&](const auto& range, std::uint64_t tests) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const std::size_t ray_tests = intersect_all<Q>(rays[i], triangles, hits[i]);
-                if (ray_stats) ray_stats[i].ray_triangle_tests = std::uint32_t(ray_tests);
+                observer.traced(i, 0, std::uint32_t(ray_tests));
                 tests += ray_tests;
             }
             return tests;
@@ -52,13 +54,14 @@ UpdateWork NaiveTracer::update(const Scene& scene, SceneUpdate) {
 
 TraceStats NaiveTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> hits, Query query,
                                     TraceDetail* detail) {
-    RayStats* ray_stats = detail ? detail->rays.data() : nullptr;
-    TraceStats stats;
-    stats.rays = rays.size();
-    stats.ray_triangle_tests = query == Query::closest
-                                   ? trace_all<Query::closest>(triangles_, rays, hits, ray_stats)
-                                   : trace_all<Query::any>(triangles_, rays, hits, ray_stats);
-    return stats;
+    return with_ray_observer(detail, [&](const auto& observer) {
+        TraceStats stats;
+        stats.rays = rays.size();
+        stats.ray_triangle_tests = query == Query::closest
+                                       ? trace_all<Query::closest>(triangles_, rays, hits, observer)
+                                       : trace_all<Query::any>(triangles_, rays, hits, observer);
+        return stats;
+    });
 }
 
 }  // namespace edacrt

@@ -37,6 +37,13 @@ struct RayStream {
     SlabRay slab_ray(std::size_t i) const { return make_slab_ray(ray(i)); }
 };
 
+/// One batch: the stream the recursion partitions, and the hits, indexed by the ray's number
+/// (its id in the stream).
+struct RayBatch {
+    RayStream stream;
+    Hit* hits;
+};
+
 /// The storage behind a RayStream, kept between batches so that a batch no larger than the
 /// last one allocates nothing.
 class RayStreamStorage {

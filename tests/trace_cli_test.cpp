@@ -164,7 +164,9 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
 }
 
 /// One recursion per batch: the statistics JSON has one node at level 0 and, apart from its
-/// timings, is the same for --threads 1 and --threads 2; the hit files are identical.
+/// timings, is the same for --threads 2 and --threads 4, and for --threads 1 as for
+/// `--second-child after-first` on 2 (no task can run beside the first child on one thread);
+/// the hit files are identical.
 TEST_F(TraceCli, StatisticsAreTheSameForAnyThreadCount) {
     ASSERT_EQ(test::run_cli("camera-rays --scene builtin:sphere:subdiv=5 --width 400 --height 300 "
                             "--out " +
@@ -184,22 +186,29 @@ TEST_F(TraceCli, StatisticsAreTheSameForAnyThreadCount) {
         return j;
     };
     for (const std::string preset : {"default", "paper", "dacrt"}) {
-        nlohmann::json stats[2];
-        for (const int threads : {1, 2}) {
-            const std::string n = std::to_string(threads);
+        // The same recursion three ways: 2 and 4 threads, and 1 thread against after-first.
+        const std::vector<std::pair<std::string, std::string>> runs = {
+            {"2", ""}, {"4", ""}, {"1", ""}, {"2", " --second-child after-first"}};
+        std::vector<nlohmann::json> stats;
+        for (std::size_t r = 0; r < runs.size(); ++r) {
+            const std::string n = std::to_string(r);
             const auto result = test::run_cli(
                 "trace --scene builtin:sphere:subdiv=5 --rays " + path("rays.bin") + " --out " +
                 path("hits" + n + ".bin") + " --stats " + path("stats" + n + ".json") +
-                " --preset " + preset + " --threads " + n);
+                " --preset " + preset + runs[r].second + " --threads " + runs[r].first);
             ASSERT_EQ(result.exit_code, 0) << result.output;
-            stats[threads - 1] = nlohmann::json::parse(std::ifstream(path("stats" + n + ".json")));
+            stats.push_back(nlohmann::json::parse(std::ifstream(path("stats" + n + ".json"))));
         }
         EXPECT_EQ(stats[0]["detail"]["levels"][0]["nodes"], 1) << preset;
         EXPECT_EQ(stats[0]["detail"]["root"]["rays"], 120000) << preset;
-        EXPECT_EQ(strip(stats[0], strip), strip(stats[1], strip)) << preset;
-        EXPECT_EQ(test::run_command("cmp " + path("hits1.bin") + " " + path("hits2.bin")).exit_code,
-                  0)
-            << preset;
+        for (const auto& [a, b] : {std::pair{0, 1}, std::pair{2, 3}}) {
+            EXPECT_EQ(strip(stats[a], strip), strip(stats[b], strip)) << preset << ", run " << b;
+            EXPECT_EQ(test::run_command("cmp " + path("hits" + std::to_string(a) + ".bin") + " " +
+                                        path("hits" + std::to_string(b) + ".bin"))
+                          .exit_code,
+                      0)
+                << preset << ", run " << b;
+        }
     }
 }
 

@@ -145,10 +145,13 @@ void expect_same(const Traced& a, const Traced& b) {
 }
 
 /// One recursion per batch: hits (any-hit occluders too), counters, per-level and per-ray
-/// statistics and the recorded nodes are the same for 1, 2 and 8 threads. The batch and the
-/// mesh are large enough for every parallel step (partitions and binning of >= 8192 items,
-/// large leaves), and the sphere's shared edges make ties whose winner depends on the order.
-TEST(EdacrtThreads, OneTwoAndEightThreadsGiveTheSameRecursion) {
+/// statistics and the recorded nodes are the same for 2, 4 and 8 threads; on 1 thread, where no
+/// task can run beside the first child, `--second-child split` is the recursion of
+/// `after-first` (so, with the paper preset's after-first, 1 thread is the same as any). The
+/// batch and the mesh are large enough for every parallel step (partitions and binning of
+/// >= 8192 items, large leaves), and the sphere's shared edges make ties whose winner depends
+/// on the order.
+TEST(EdacrtThreads, TheRecursionIsTheSameForAnyThreadCountAndAfterFirstOnOne) {
     const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
     std::vector<Ray> rays;
     const PinholeProjection projection(frame_box(scene.bounds()), 300, 300);
@@ -158,17 +161,24 @@ TEST(EdacrtThreads, OneTwoAndEightThreadsGiveTheSameRecursion) {
     rays.insert(rays.end(), random.begin(), random.end());
     ASSERT_GE(rays.size(), 100'000u);
     for (const EdacrtParams& p : {EdacrtParams{}, paper_params(), dacrt_params()}) {
+        EdacrtParams after_first = p;
+        after_first.second_child = SecondChild::after_first;
         const auto tracer = make_tracer(Method::edacrt, p);
+        const auto waiting = make_tracer(Method::edacrt, after_first);
         tracer->set_scene(scene);
+        waiting->set_scene(scene);
         for (Query query : {Query::closest, Query::any}) {
             SCOPED_TRACE(query == Query::any ? "any hit" : "closest hit");
-            const Traced one = trace_detailed(*tracer, rays, query, 1);
-            EXPECT_EQ(one.detail.levels.at(0).nodes, 1u);
-            EXPECT_GT(one.detail.nodes.size(), 100u);
-            for (int threads : {2, 8}) {
+            const Traced two = trace_detailed(*tracer, rays, query, 2);
+            EXPECT_EQ(two.detail.levels.at(0).nodes, 1u);
+            EXPECT_GT(two.detail.nodes.size(), 100u);
+            for (int threads : {4, 8}) {
                 SCOPED_TRACE(std::to_string(threads) + " threads");
-                expect_same(one, trace_detailed(*tracer, rays, query, threads));
+                expect_same(two, trace_detailed(*tracer, rays, query, threads));
             }
+            SCOPED_TRACE("1 thread against after-first on 2");
+            expect_same(trace_detailed(*waiting, rays, query, 2),
+                        trace_detailed(*tracer, rays, query, 1));
         }
     }
 }

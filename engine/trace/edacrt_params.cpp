@@ -126,7 +126,8 @@ const std::array<ParamInfo, 18> kParams = {
         "split: the rays that missed the first child's box go to the second child at once, as a "
         "task beside the first child (no hit there can cull them), the others once it is done; "
         "the same culling and box tests, the second child recursing twice, and subtrees in "
-        "parallel."),
+        "parallel. Only where it can pay: with 512 missed rays or more, and on more than one "
+        "thread (on one, split is after-first)."),
     integer<&EdacrtParams::leaf_rays>(
         "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
     integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",

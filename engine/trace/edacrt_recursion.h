@@ -8,10 +8,12 @@
 // them out.
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cassert>
 #include <cmath>
@@ -121,12 +123,24 @@ struct RecursionScratch {
 };
 using RecursionScratches = tbb::enumerable_thread_specific<RecursionScratch>;
 
+/// The threads this recursion's tasks may run on: the arena's, as --threads limits them.
+inline int worker_threads() {
+    return std::min(
+        tbb::this_task_arena::max_concurrency(),
+        int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+}
+
 template <Query Q, class Observer>
 class Recursion {
   public:
     Recursion(const EdacrtParams& params, const EdacrtScene& scene, const RayBatch& batch,
               RecursionScratches& scratch, Observer& observer)
-        : p_(params), scene_(scene), batch_(batch), scratches_(scratch), obs_(observer) {}
+        : p_(params),
+          scene_(scene),
+          batch_(batch),
+          scratches_(scratch),
+          obs_(observer),
+          split_second_(params.second_child == SecondChild::split && worker_threads() > 1) {}
 
     /// The ray-box and ray-triangle tests done so far.
     TraceStats totals() const { return {0, box_tests_, triangle_tests_}; }
@@ -185,18 +199,22 @@ class Recursion {
             obs_.child(visit, part, split, second_side, 1, second_skipped, c);
             return c;
         };
+        // SecondChild::split: the rays that missed the first child's box (after its rays in
+        // the stream) cannot be culled by its hits, so they go to the second child at once, as
+        // a task beside the first child (disjoint rays, triangles and stream ranges); those
+        // that reached it go once its hits have culled them. The second child then recurses
+        // twice (its binning, sampling and partition again, and a few missed rays make a
+        // brute-force leaf over all its triangles), so only a missed part large enough for a
+        // task of its own is split off, and only where a task can run beside the first child
+        // (split_second_): a smaller part waits for the first child, as in the paper.
         const std::size_t missed = node.ray_count - first.ray_count;
-        if (p_.second_child == SecondChild::after_first || missed == 0) {
+        if (!split_second_ || missed < kTaskRays) {
             run(first);
             run(second(node.ray_begin, node.ray_count));
             return;
         }
-        // SecondChild::split: the rays that missed the first child's box (after its rays in
-        // the stream) cannot be culled by its hits, so they go to the second child at once,
-        // beside the first child (disjoint rays, triangles and stream ranges); those that
-        // reached it go once its hits have culled them.
         const std::size_t missed_begin = node.ray_begin + first.ray_count;
-        if (!Observer::kConcurrent || missed < kTaskRays) {
+        if constexpr (!Observer::kConcurrent) {
             run(first);
             run(second(missed_begin, missed));
         } else {
@@ -209,7 +227,7 @@ class Recursion {
         run(second(node.ray_begin, first.ray_count));
     }
 
-    /// Rays of a missed part below this go to the second child without a task of their own.
+    /// The smallest missed part split off as a task beside the first child.
     static constexpr std::size_t kTaskRays = 512;
 
   private:
@@ -454,6 +472,9 @@ class Recursion {
     const RayBatch& batch_;
     RecursionScratches& scratches_;
     Observer& obs_;
+    // SecondChild::split where a task can run beside the first child: on one thread the
+    // second child's rays all wait for the first child, as with after_first.
+    const bool split_second_;
     std::atomic<std::uint64_t> box_tests_{0}, triangle_tests_{0};
 };
 

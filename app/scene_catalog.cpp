@@ -1,12 +1,11 @@
 #include "scene_catalog.h"
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "scene/scene_manifest.h"
 #include "scene/scene_paths.h"
 #include "util/error.h"
-#include "util/input_file.h"
 
 namespace edacrt::app {
 namespace {
@@ -40,33 +39,24 @@ std::string with_commas(long long n) {
 /// The public scenes of the manifest, or false when it cannot be read (the caller falls back
 /// to listing the scenes folder).
 bool add_public_scenes(const fs::path& assets, const fs::path& scenes, SceneCatalog& catalog) {
-    std::string text;
+    SceneManifest manifest;
     try {
-        text = read_text_file(assets / "scenes.json", "scene manifest");
+        manifest = read_scene_manifest(assets / "scenes.json");
     } catch (const InputError&) {
-        return false;
+        return false;  // unreadable or malformed: the manifest as a whole is not trusted
     }
-    const nlohmann::json manifest = nlohmann::json::parse(text, nullptr, false);
-    if (!manifest.is_object() || !manifest.contains("scenes") || !manifest["scenes"].is_array())
-        return false;
     std::vector<CatalogEntry> found;
     int missing = 0;
-    try {
-        for (const auto& scene : manifest["scenes"]) {
-            const auto folder = scene.at("folder").get<std::string>();
-            const auto file = scene.at("scene").get<std::string>();
-            std::error_code error;
-            if (fs::is_regular_file(assets / folder / file, error)) continue;  // bundled
-            const fs::path path = scenes / folder / file;
-            const bool present = fs::is_regular_file(path, error);
-            const long long triangles = scene.value("triangles", 0LL);
-            found.push_back({folder + (present ? " (" + with_commas(triangles) + " triangles)"
-                                               : " (not downloaded)"),
-                             path.string(), present});
-            missing += !present;
-        }
-    } catch (const nlohmann::json::exception&) {
-        return false;  // a malformed entry: the manifest as a whole is not trusted
+    for (const ManifestScene& scene : manifest.scenes) {
+        if (is_bundled(scene, assets)) continue;
+        const fs::path path = scenes / scene.folder / scene.file;
+        std::error_code error;
+        const bool present = fs::is_regular_file(path, error);
+        found.push_back(
+            {scene.folder + (present ? " (" + with_commas(scene.triangles) + " triangles)"
+                                     : " (not downloaded)"),
+             path.string(), present});
+        missing += !present;
     }
     catalog.entries.insert(catalog.entries.end(), found.begin(), found.end());
     catalog.missing = missing;

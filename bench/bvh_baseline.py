@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench_common import ROOT, SCENES, run as run_checked
+from bench_common import ROOT, run as run_checked, scene_list
 from readme_section import splice
 
 HEADING = "## BVH baseline"
@@ -36,8 +36,8 @@ def trace(args, scene, rays, method):
 
 def measure(args):
     rows = []
-    for name, path, camera in SCENES:
-        scene = args.scenes / path
+    for entry in scene_list("paper"):
+        name, camera, scene = entry.name, entry.camera_flags, entry.path(args.scenes)
         directory = args.out / "rays" / name
         run(["nice", args.build / "edacrt_paper_rays", "--scene", scene, "--width", args.size,
              "--height", args.size, "--out-dir", directory, *camera])

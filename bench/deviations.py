@@ -23,7 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
+from bench_common import ROOT, scene_list
+
 SCENES = Path(os.environ.get("EDACRT_SCENES", ROOT.parent / "shared" / "scenes"))
 
 # (name, flags, what the flags put back to the paper's choice)
@@ -44,7 +45,7 @@ VARIANTS = [
     ("dacrt", ["--preset", "dacrt"], "surface area, direction sign, always filter"),
 ]
 
-SETS = [("bunny", "bunny/stanford-bunny.obj"), ("sponza", "sponza/sponza.obj")]
+SETS = [(s.name, s.relative) for s in scene_list("deviations")]  # under SCENES
 
 
 def edacrt(build, *args):

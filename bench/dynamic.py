@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
 
-from bench_common import ROOT, run as run_checked  # noqa: E402
+from bench_common import ROOT, run as run_checked, scene_list  # noqa: E402
 from readme_section import splice  # noqa: E402
 
 HEADING = "## Dynamic scenes"
@@ -42,11 +42,11 @@ STYLE = {  # method label: colour, line style
 
 
 def command(args, json_path, markdown_path):
-    return ["nice", "-n", "0", args.build / "edacrt", "bench", "--dynamic", "--scene", "bunny",
-            "--scene", "sponza", "--scenes", args.scenes, "--width", args.size, "--height",
-            args.size, "--spp", "1,4,16", "--rays-per-triangle", args.sweep, "--frames",
-            args.frames, "--threads", args.threads, "--json", json_path, "--markdown",
-            markdown_path]
+    scenes = [flag for s in scene_list("bench_dynamic") for flag in ("--scene", s.name)]
+    return ["nice", "-n", "0", args.build / "edacrt", "bench", "--dynamic", *scenes, "--scenes",
+            args.scenes, "--width", args.size, "--height", args.size, "--spp", "1,4,16",
+            "--rays-per-triangle", args.sweep, "--frames", args.frames, "--threads", args.threads,
+            "--json", json_path, "--markdown", markdown_path]
 
 
 def figure(results, path):

@@ -24,7 +24,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench_common import ROOT, SCENES, run as run_checked
+from bench_common import ROOT, run as run_checked, scene_list
 from readme_section import splice
 
 import matplotlib
@@ -139,10 +139,12 @@ def measure(args, previous):
     argv = [a for a in argv if not a.startswith("--note=")]
     run = {"command": "bench/paper_experiment.py " + shlex.join(argv), "note": args.note,
            "started": time.time(), "load_before": os.getloadavg()[0], "scenes": []}
-    for name, file, camera_flags in SCENES:
+    scenes = scene_list("paper")
+    for entry in scenes:
+        name, camera_flags = entry.name, entry.camera_flags
         if args.scene and name not in args.scene:
             continue
-        scene = args.scenes / file
+        scene = entry.path(args.scenes)
         if not scene.exists():
             print(f"{name}: {scene} not found, skipped", flush=True)
             results["skipped"].append(f"{name} ({scene} not found)")
@@ -165,7 +167,7 @@ def measure(args, previous):
                   f"{1e3 * e:.0f} ms, speed-up {d / e:.2f}", flush=True)
     run.update(seconds=time.time() - run["started"], load_after=os.getloadavg()[0])
     results["runs"].append(run)
-    results["scenes"] = {n: results["scenes"][n] for n, _, _ in SCENES if n in results["scenes"]}
+    results["scenes"] = {n: results["scenes"][n] for n, *_ in scenes if n in results["scenes"]}
     return results
 
 

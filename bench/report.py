@@ -20,16 +20,13 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from bench_common import ROOT, scene_list  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
 METHODS = ["edacrt", "dacrt", "bvh", "embree", "naive"]
 COLOURS = {"edacrt": "tab:red", "dacrt": "tab:orange", "bvh": "tab:blue",
            "embree": "tab:green", "naive": "tab:gray"}
-SCENES = [  # name, scene, extra render flags
-    ("cornell", "assets/cornell-box/CornellBox-Original.obj", []),
-    ("spot", "assets/spot/spot.obj", []),
-    ("teapot", "assets/teapot/teapot.obj", []),
-]
+# name, scene, extra render flags: the list "report" of assets/scenes.json, bundled scenes
+SCENES = [(s.name, str(Path("assets") / s.relative), []) for s in scene_list("report")]
 
 
 def edacrt(build, *args, capture=True):

@@ -1,10 +1,10 @@
 // Google Benchmark of the tracers on camera rays and on the first diffuse bounce (rays spawned
-// from the camera hits), closest and any hit. Bundled scenes always; the dragon from
-// $EDACRT_SCENES (default ../shared/scenes) when present.
+// from the camera hits), closest and any hit, on the scenes of the list "trace_benchmark" of
+// assets/scenes.json: bundled ones always, the others from $EDACRT_SCENES (default
+// ../shared/scenes) when present.
 //   build/edacrt_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -14,6 +14,8 @@
 #include "render/shading_scene.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "scene/scene_manifest.h"
+#include "scene/scene_paths.h"
 #include "trace/tracer.h"
 #include "util/hash_random.h"
 
@@ -69,18 +71,12 @@ void trace_rays(benchmark::State& state, const std::string& path, Method method,
         double(rays.size()) * 1e-6 * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-std::string scenes_dir() {
-    const char* dir = std::getenv("EDACRT_SCENES");
-    return dir ? dir : EDACRT_SOURCE_DIR "/../shared/scenes";
-}
-
 void register_all() {
-    const std::pair<std::string, std::string> scenes[] = {
-        {"cornell", EDACRT_SOURCE_DIR "/assets/cornell-box/CornellBox-Original.obj"},
-        {"spot", EDACRT_SOURCE_DIR "/assets/spot/spot.obj"},
-        {"dragon", scenes_dir() + "/dragon/dragon_vrip_res3.obj"},
-    };
-    for (const auto& [name, path] : scenes)
+    const std::filesystem::path source = EDACRT_SOURCE_DIR;
+    const SceneManifest manifest = read_scene_manifest(scene_manifest_path(source));
+    for (const std::string& name : manifest.list("trace_benchmark")) {
+        const std::string path =
+            scene_file(*manifest.find(name), source / "assets", default_scenes_dir(source));
         for (Method method : {Method::edacrt, Method::dacrt, Method::bvh, Method::embree})
             for (bool bounce : {false, true})
                 for (Query query : {Query::closest, Query::any}) {
@@ -93,6 +89,7 @@ void register_all() {
                         ->Unit(benchmark::kMillisecond)
                         ->UseRealTime();
                 }
+    }
 }
 
 }  // namespace

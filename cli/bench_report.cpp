@@ -3,10 +3,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <string_view>
 #include <thread>
 
 #include "text_table.h"
@@ -23,16 +26,9 @@ std::vector<double> frame_seconds(const MethodRun& m) {
     return frame;
 }
 
-std::string agreement_text(const MethodRun& m) {
-    if (m.reference) return "reference";
-    const Agreement& a = m.agreement;
-    if (a.disagreements) return "FAIL " + std::to_string(a.disagreements);
-    return a.tolerated ? "ok (" + std::to_string(a.tolerated) + " tol)" : "ok";
-}
-
 /// Per-ray test counts; Embree does not count.
 std::optional<double> per_ray(const MethodRun& m, std::uint64_t tests) {
-    if (m.method == Method::embree || m.stats.rays == 0) return std::nullopt;
+    if (m.variant.method == Method::embree || m.stats.rays == 0) return std::nullopt;
     return double(tests) / double(m.stats.rays);
 }
 
@@ -42,45 +38,106 @@ std::string format(const char* pattern, double value) {
     return text;
 }
 
-std::string optional_text(std::optional<double> value, const char* pattern) {
+std::string optional_text(std::optional<double> value, const char* pattern = "%.2f") {
     return value ? format(pattern, *value) : "n/a";
 }
 
+nlohmann::json optional_json(std::optional<double> value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+// The cells, each once; the layouts below choose and order them.
+std::string scene(const Row& r) { return r.run->scene; }
+std::string set(const Row& r) { return r.run->set; }
+std::string rays(const Row& r) { return std::to_string(r.run->rays); }
+std::string threads(const Row& r) { return std::to_string(r.run->threads); }
+std::string rays_per_triangle(const Row& r) { return format("%.3g", r.run->rays_per_triangle()); }
+std::string label(const Row& r) { return r.method->variant.label; }
+std::string update_work(const Row& r) {
+    return std::string(enum_name(kUpdateWorks, r.method->work));
+}
+std::string frame_ms(const Row& r) { return format("%.2f", r.frame_median * 1e3); }
+std::string frame_min_ms(const Row& r) { return format("%.2f", r.frame_min * 1e3); }
+std::string trace_ms(const Row& r) { return format("%.2f", r.trace_median * 1e3); }
+std::string trace_min_ms(const Row& r) { return format("%.2f", r.trace_min * 1e3); }
+std::string prepare_ms(const Row& r) { return format("%.2f", r.prepare_median * 1e3); }
+std::string mrays_frame(const Row& r) { return format("%.2f", r.mrays_frame); }
+std::string mrays_trace(const Row& r) { return format("%.2f", r.mrays_trace); }
+std::string per_embree(const Row& r) { return optional_text(r.frame_per_embree); }
+std::string per_edacrt(const Row& r) { return optional_text(r.frame_per_edacrt); }
+std::string box_per_ray(const Row& r) {
+    return optional_text(per_ray(*r.method, r.method->stats.ray_box_tests), "%.1f");
+}
+std::string triangle_per_ray(const Row& r) {
+    return optional_text(per_ray(*r.method, r.method->stats.ray_triangle_tests), "%.1f");
+}
+std::string megabytes(const Row& r) {
+    return format("%.1f", double(r.method->working_bytes) * 1e-6);
+}
+std::string agreement(const Row& r) {
+    if (r.method->reference) return "reference";
+    const Agreement& a = r.method->agreement;
+    if (a.disagreements) return "FAIL " + std::to_string(a.disagreements);
+    return a.tolerated ? "ok (" + std::to_string(a.tolerated) + " tol)" : "ok";
+}
+std::string scaling(const Row& r) { return optional_text(r.scaling); }
+
 using Column = cli::Column<Row>;
 
-const Column kColumns[] = {
-    {"scene", 11, true, [](const Row& r) { return r.run->scene; }},
-    {"set", 12, true, [](const Row& r) { return r.run->set; }},
-    {"rays", 10, false, [](const Row& r) { return std::to_string(r.run->rays); }},
-    {"thr", 4, false, [](const Row& r) { return std::to_string(r.run->threads); }},
-    {"method", 14, true, [](const Row& r) { return r.method->label; }},
-    {"frame ms", 9, false, [](const Row& r) { return format("%.2f", r.frame_median * 1e3); }},
-    {"frame min", 9, false, [](const Row& r) { return format("%.2f", r.frame_min * 1e3); }},
-    {"trace ms", 9, false, [](const Row& r) { return format("%.2f", r.trace_median * 1e3); }},
-    {"trace min", 9, false, [](const Row& r) { return format("%.2f", r.trace_min * 1e3); }},
-    {"prep ms", 9, false, [](const Row& r) { return format("%.2f", r.prepare_median * 1e3); }},
-    {"Mrays/s", 8, false, [](const Row& r) { return format("%.2f", r.mrays_frame); }},
-    {"(trace)", 8, false, [](const Row& r) { return format("%.2f", r.mrays_trace); }},
-    {"x embree", 8, false, [](const Row& r) { return optional_text(r.frame_per_embree, "%.2f"); }},
-    {"box/ray", 8, false,
-     [](const Row& r) {
-         return optional_text(per_ray(*r.method, r.method->stats.ray_box_tests), "%.1f");
-     }},
-    {"tri/ray", 8, false,
-     [](const Row& r) {
-         return optional_text(per_ray(*r.method, r.method->stats.ray_triangle_tests), "%.1f");
-     }},
-    {"MB", 7, false,
-     [](const Row& r) { return format("%.1f", double(r.method->working_bytes) * 1e-6); }},
-    {"agreement", 12, true, [](const Row& r) { return agreement_text(*r.method); }},
-};
-const Column kScalingColumn = {"1t/Nt", 6, false,
-                               [](const Row& r) { return optional_text(r.scaling, "%.2f"); }};
+// Every column once, its width 0; the layouts below choose, order and size them.
+const Column kColumns[] = {{"scene", 0, true, scene},
+                           {"set", 0, true, set},
+                           {"rays", 0, false, rays},
+                           {"thr", 0, false, threads},
+                           {"rays/tri", 0, false, rays_per_triangle},
+                           {"method", 0, true, label},
+                           {"update", 0, true, update_work},
+                           {"frame ms", 0, false, frame_ms},
+                           {"frame min", 0, false, frame_min_ms},
+                           {"trace ms", 0, false, trace_ms},
+                           {"trace min", 0, false, trace_min_ms},
+                           {"prep ms", 0, false, prepare_ms},
+                           {"update ms", 0, false, prepare_ms},
+                           {"Mrays/s", 0, false, mrays_frame},
+                           {"(trace)", 0, false, mrays_trace},
+                           {"x embree", 0, false, per_embree},
+                           {"x edacrt", 0, false, per_edacrt},
+                           {"box/ray", 0, false, box_per_ray},
+                           {"tri/ray", 0, false, triangle_per_ray},
+                           {"MB", 0, false, megabytes},
+                           {"agreement", 0, true, agreement},
+                           {"1t/Nt", 0, false, scaling}};
 
-std::vector<Column> columns(bool sweep) {
-    std::vector<Column> all(std::begin(kColumns), std::end(kColumns));
-    if (sweep) all.push_back(kScalingColumn);
-    return all;
+struct Placed {
+    std::string_view title;
+    int width;  // in the stdout table
+};
+constexpr Placed kStill[] = {{"scene", 11},    {"set", 12},     {"rays", 10},     {"thr", 4},
+                             {"method", 14},   {"frame ms", 9}, {"frame min", 9}, {"trace ms", 9},
+                             {"trace min", 9}, {"prep ms", 9},  {"Mrays/s", 8},   {"(trace)", 8},
+                             {"x embree", 8},  {"box/ray", 8},  {"tri/ray", 8},   {"MB", 7},
+                             {"agreement", 12}};
+constexpr Placed kScaling = {"1t/Nt", 6};
+constexpr Placed kAnimated[] = {{"scene", 8},     {"set", 12},     {"rays", 9},
+                                {"rays/tri", 8},  {"method", 14},  {"update", 8},
+                                {"update ms", 9}, {"trace ms", 9}, {"frame ms", 9},
+                                {"frame min", 9}, {"x edacrt", 8}, {"agreement", 10}};
+
+std::vector<Column> columns(TableLayout layout) {
+    std::vector<Placed> placed;
+    if (layout.animated)
+        placed.assign(std::begin(kAnimated), std::end(kAnimated));
+    else
+        placed.assign(std::begin(kStill), std::end(kStill));
+    if (layout.thread_sweep && !layout.animated) placed.push_back(kScaling);
+    std::vector<Column> out;
+    for (const Placed& p : placed) {
+        Column c = *std::find_if(std::begin(kColumns), std::end(kColumns),
+                                 [&](const Column& column) { return column.title == p.title; });
+        c.width = p.width;
+        out.push_back(c);
+    }
+    return out;
 }
 
 std::string cpu_model() {
@@ -103,14 +160,18 @@ double median(std::vector<double> v) {
 }
 
 std::vector<Row> make_rows(const SetRun& run, const SetRun* single_thread) {
+    // Still, the Embree modes are one method: the fastest is shown and is the ratios' base.
     double best_embree = std::numeric_limits<double>::infinity();
     std::size_t best = run.methods.size();
+    std::optional<double> edacrt;
     for (std::size_t i = 0; i < run.methods.size(); ++i) {
-        const double frame = median(frame_seconds(run.methods[i]));
-        if (run.methods[i].method == Method::embree && frame < best_embree) {
+        const MethodRun& m = run.methods[i];
+        const double frame = median(frame_seconds(m));
+        if (!run.animated && m.variant.method == Method::embree && frame < best_embree) {
             best_embree = frame;
             best = i;
         }
+        if (m.variant.label == "edacrt") edacrt = frame;
     }
     std::vector<Row> rows;
     for (std::size_t i = 0; i < run.methods.size(); ++i) {
@@ -127,24 +188,26 @@ std::vector<Row> make_rows(const SetRun& run, const SetRun* single_thread) {
         row.mrays_frame = double(run.rays) / row.frame_median * 1e-6;
         row.mrays_trace = double(run.rays) / row.trace_median * 1e-6;
         if (best < run.methods.size()) row.frame_per_embree = row.frame_median / best_embree;
-        row.shown = m.method != Method::embree || i == best;
+        if (edacrt) row.frame_per_edacrt = row.frame_median / *edacrt;
+        row.shown = run.animated || m.variant.method != Method::embree || i == best;
         if (single_thread)
             for (const MethodRun& one : single_thread->methods)
-                if (one.label == m.label)
+                if (one.variant.label == m.variant.label)
                     row.scaling = median(frame_seconds(one)) / row.frame_median;
         rows.push_back(row);
     }
     return rows;
 }
 
-std::string table_header(bool sweep) { return text_table_header<Row>(columns(sweep)); }
+std::string table_header(TableLayout layout) { return text_table_header<Row>(columns(layout)); }
 
-std::string table_row(const Row& row, bool sweep) {
-    return text_table_row<Row>(columns(sweep), row);
+std::string table_row(const Row& row, TableLayout layout) {
+    return text_table_row<Row>(columns(layout), row);
 }
 
-std::string markdown_table(const std::vector<Row>& rows, bool sweep) {
-    return cli::markdown_table<Row>(columns(sweep), rows, [](const Row& r) { return r.shown; });
+std::string markdown_table(const std::vector<Row>& rows, TableLayout layout) {
+    return cli::markdown_table<Row>(columns(layout), rows,
+                                    [](const Row& r) { return r.shown && !r.run->sweep(); });
 }
 
 nlohmann::json machine_json() {
@@ -160,38 +223,103 @@ nlohmann::json machine_json() {
 }
 
 nlohmann::json row_json(const Row& row) {
+    const SetRun& run = *row.run;
     const MethodRun& m = *row.method;
-    const auto optional = [](std::optional<double> v) -> nlohmann::json {
-        return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-    };
     const Agreement& a = m.agreement;
-    return {{"scene", row.run->scene},
-            {"set", row.run->set},
-            {"query", enum_name(kQueries, row.run->query)},
-            {"rays", row.run->rays},
-            {"threads", row.run->threads},
-            {"method", m.label},
-            {"best_embree_mode", m.method == Method::embree && row.shown},
-            {"prepare_seconds", m.prepare_seconds},
-            {"trace_seconds", m.trace_seconds},
-            {"frame_seconds_median", row.frame_median},
-            {"frame_seconds_min", row.frame_min},
-            {"trace_seconds_median", row.trace_median},
-            {"trace_seconds_min", row.trace_min},
-            {"prepare_seconds_median", row.prepare_median},
-            {"mrays_per_second_frame", row.mrays_frame},
-            {"mrays_per_second_trace", row.mrays_trace},
-            {"frame_time_per_best_embree", optional(row.frame_per_embree)},
-            {"box_tests_per_ray", optional(per_ray(m, m.stats.ray_box_tests))},
-            {"triangle_tests_per_ray", optional(per_ray(m, m.stats.ray_triangle_tests))},
-            {"working_bytes", m.working_bytes},
-            {"scaling_1_thread_over_n", optional(row.scaling)},
-            {"agreement",
-             {{"reference", m.reference},
-              {"ties", a.ties},
-              {"tolerated", a.tolerated},
-              {"disagreements", a.disagreements},
-              {"first_disagreement", a.first_disagreement}}}};
+    nlohmann::json json = {{"scene", run.scene},
+                           {"set", run.set},
+                           {"rays", run.rays},
+                           {"method", m.variant.label},
+                           {"trace_seconds", m.trace_seconds},
+                           {"frame_seconds_median", row.frame_median},
+                           {"frame_seconds_min", row.frame_min},
+                           {"trace_seconds_median", row.trace_median},
+                           {"agreement",
+                            {{"reference", m.reference},
+                             {"ties", a.ties},
+                             {"tolerated", a.tolerated},
+                             {"disagreements", a.disagreements},
+                             {"first_disagreement", a.first_disagreement}}}};
+    if (run.animated) {
+        json.update({{"spp", run.spp},
+                     {"triangles", run.triangles},
+                     {"rays_per_triangle", run.rays_per_triangle()},
+                     {"update_mode", enum_name(kSceneUpdates, m.variant.how)},
+                     {"update_work", enum_name(kUpdateWorks, m.work)},
+                     {"animate_seconds", run.animate_seconds},
+                     {"update_seconds", m.prepare_seconds},
+                     {"update_seconds_median", row.prepare_median},
+                     {"frame_time_per_edacrt", optional_json(row.frame_per_edacrt)}});
+        return json;
+    }
+    json.update({{"query", enum_name(kQueries, run.query)},
+                 {"threads", run.threads},
+                 {"best_embree_mode", m.variant.method == Method::embree && row.shown},
+                 {"prepare_seconds", m.prepare_seconds},
+                 {"trace_seconds_min", row.trace_min},
+                 {"prepare_seconds_median", row.prepare_median},
+                 {"mrays_per_second_frame", row.mrays_frame},
+                 {"mrays_per_second_trace", row.mrays_trace},
+                 {"frame_time_per_best_embree", optional_json(row.frame_per_embree)},
+                 {"box_tests_per_ray", optional_json(per_ray(m, m.stats.ray_box_tests))},
+                 {"triangle_tests_per_ray", optional_json(per_ray(m, m.stats.ray_triangle_tests))},
+                 {"working_bytes", m.working_bytes},
+                 {"scaling_1_thread_over_n", optional_json(row.scaling)}});
+    return json;
+}
+
+std::vector<Crossover> crossovers(const std::vector<SetRun>& runs) {
+    // Per scene and method: (rays per triangle, frame time / EDACRT's), ascending.
+    std::map<std::pair<std::string, std::string>, std::vector<std::pair<double, double>>> curves;
+    for (const SetRun& run : runs) {
+        if (!run.sweep()) continue;
+        for (const Row& row : make_rows(run)) {
+            const Method method = row.method->variant.method;
+            if (!row.frame_per_edacrt || method == Method::edacrt || method == Method::dacrt)
+                continue;
+            curves[{run.scene, row.method->variant.label}].emplace_back(run.rays_per_triangle(),
+                                                                        *row.frame_per_edacrt);
+        }
+    }
+    std::vector<Crossover> out;
+    for (auto& [key, points] : curves) {
+        std::sort(points.begin(), points.end());
+        // From the last point where the method was slower, it is faster at every larger one.
+        std::size_t first_fast = points.size();
+        while (first_fast > 0 && points[first_fast - 1].second < 1.0) --first_fast;
+        Crossover c{key.first, key.second, std::nullopt, {}};
+        if (first_fast == points.size()) {
+            c.text = "above " + format("%.3g", points.back().first);
+        } else if (first_fast == 0) {
+            c.text = "below " + format("%.3g", points.front().first);
+        } else {
+            const auto [r0, q0] = points[first_fast - 1];
+            const auto [r1, q1] = points[first_fast];
+            const double f0 = std::log(q0), f1 = std::log(q1);  // f0 >= 0 > f1
+            const double at =
+                std::exp(std::log(r0) + f0 / (f0 - f1) * (std::log(r1) - std::log(r0)));
+            c.rays_per_triangle = at;
+            c.text = format("%.3g", at);
+        }
+        out.push_back(c);
+    }
+    return out;
+}
+
+std::string crossover_markdown_table(const std::vector<Crossover>& crossovers) {
+    std::string text =
+        "| scene | method | faster than edacrt from (rays per triangle) |\n"
+        "|---|---|---:|\n";
+    for (const Crossover& c : crossovers)
+        text += "| " + c.scene + " | " + c.method + " | " + c.text + " |\n";
+    return text;
+}
+
+nlohmann::json crossover_json(const Crossover& c) {
+    return {{"scene", c.scene},
+            {"method", c.method},
+            {"rays_per_triangle", optional_json(c.rays_per_triangle)},
+            {"text", c.text}};
 }
 
 }  // namespace edacrt::cli

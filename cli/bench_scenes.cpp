@@ -1,42 +1,24 @@
 #include "bench_scenes.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 
+#include "scene/scene_manifest.h"
 #include "trace/tracer.h"
 #include "util/error.h"
 
 namespace edacrt::cli {
 namespace {
 
-struct KnownScene {
-    const char* name;
-    bool bundled;  // in assets/, else in the scenes directory
-    const char* file;
-};
+const SceneManifest& manifest() {
+    static const SceneManifest manifest =
+        read_scene_manifest(scene_manifest_path(EDACRT_SOURCE_DIR));
+    return manifest;
+}
 
-constexpr KnownScene kKnownScenes[] = {
-    {"bunny", false, "bunny/stanford-bunny.obj"},
-    {"dragon", false, "dragon/dragon_vrip_res3.obj"},
-    {"buddha", false, "buddha/buddha.obj"},
-    {"suzanne", false, "suzanne/suzanne.obj"},
-    {"sponza", false, "sponza/sponza.obj"},
-    {"sibenik", false, "sibenik/sibenik.obj"},
-    {"conference", false, "conference/conference.obj"},
-    {"cornell", true, "cornell-box/CornellBox-Original.obj"},
-    {"spot", true, "spot/spot.obj"},
-    {"teapot", true, "teapot/teapot.obj"},
-};
-
-constexpr const char* kInteriors[] = {"sponza", "sibenik", "conference"};
-
-std::string lower(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
+/// The manifest's scene called `name`, or null; builtin:... specs need no manifest.
+const ManifestScene* known_scene(const std::string& name) {
+    return name.starts_with("builtin:") ? nullptr : manifest().find(name);
 }
 
 /// Fractions of `count` rays from `eye` in all directions (a Fibonacci sphere) that hit
@@ -64,19 +46,39 @@ std::string percent(double fraction) { return std::to_string(int(std::lround(100
 
 }  // namespace
 
-std::vector<std::string> default_bench_scene_names() {
-    return {"bunny", "sponza", "sibenik", "conference", "cornell", "spot", "teapot"};
+std::vector<std::string> bench_scene_list(const std::string& list) { return manifest().list(list); }
+
+std::string bench_scene_list_text(const std::string& list) {
+    try {
+        std::string text;
+        for (const std::string& name : manifest().list(list))
+            text += (text.empty() ? "" : ", ") + name;
+        return text;
+    } catch (const InputError&) {  // reported when a scene is looked up
+        return "the list " + list + " of assets/scenes.json";
+    }
+}
+
+std::string bench_scene_help() {
+    std::string names = "a name";
+    try {
+        names = manifest().names();
+    } catch (const InputError&) {
+    }
+    return "a scene to measure (repeatable): " + names + " (assets/scenes.json), an OBJ path " +
+           "or builtin:... (default: " + bench_scene_list_text("bench") +
+           "; absent ones are skipped)";
 }
 
 std::vector<BenchScene> resolve_bench_scenes(const std::vector<std::string>& names,
                                              const std::filesystem::path& scenes_dir,
                                              bool scenes_dir_required) {
+    const std::filesystem::path assets = std::filesystem::path(EDACRT_SOURCE_DIR) / "assets";
     std::vector<BenchScene> scenes;
     std::error_code ec;
     for (const std::string& name : names) {
-        const auto known = std::find_if(std::begin(kKnownScenes), std::end(kKnownScenes),
-                                        [&](const KnownScene& k) { return lower(name) == k.name; });
-        if (known == std::end(kKnownScenes)) {
+        const ManifestScene* known = known_scene(name);
+        if (!known) {
             if (name.starts_with("builtin:")) {
                 scenes.push_back({name, name});
                 continue;
@@ -87,17 +89,17 @@ std::vector<BenchScene> resolve_bench_scenes(const std::vector<std::string>& nam
             scenes.push_back({std::filesystem::path(name).stem().string(), name});
             continue;
         }
-        const std::filesystem::path dir =
-            known->bundled ? std::filesystem::path(EDACRT_SOURCE_DIR) / "assets" : scenes_dir;
-        if (!known->bundled && !std::filesystem::is_directory(dir, ec)) {
+        const bool bundled = is_bundled(*known, assets);
+        if (!bundled && !std::filesystem::is_directory(scenes_dir, ec)) {
             if (scenes_dir_required)
-                throw InputError("scenes directory " + dir.string() + " not found (needed for " +
-                                 name + "; set --scenes or $EDACRT_SCENES)");
-            std::cerr << "bench: skipping " << name << ": scenes directory " << dir.string()
+                throw InputError("scenes directory " + scenes_dir.string() +
+                                 " not found (needed for " + name +
+                                 "; set --scenes or $EDACRT_SCENES)");
+            std::cerr << "bench: skipping " << name << ": scenes directory " << scenes_dir.string()
                       << " not found\n";
             continue;
         }
-        const std::filesystem::path path = dir / known->file;
+        const std::filesystem::path path = scene_file(*known, assets, scenes_dir);
         if (!std::filesystem::is_regular_file(path, ec)) {
             std::cerr << "bench: skipping " << name << ": " << path.string() << " not found\n";
             continue;
@@ -121,8 +123,8 @@ BenchView bench_view(const Scene& scene, const std::string& name) {
     const glm::vec3 eye{centre.x, floor_y + (box.hi.y - floor_y) / 6.0f, centre.z};
 
     BenchView view;
-    const bool known_interior = std::find(std::begin(kInteriors), std::end(kInteriors),
-                                          lower(name)) != std::end(kInteriors);
+    const ManifestScene* known = known_scene(name);
+    const bool known_interior = known && known->interior;
     const auto [hit, front] = enclosure(scene, *tracer, eye);
     const std::string measured =
         percent(hit) + "% of rays from inside hit, " + percent(front) + "% of those front faces";

@@ -339,6 +339,20 @@ class Manifest(unittest.TestCase):
                     self.assertIn(e["download"], self.manifest["downloads"])
                     self.assertIn(e.get("convert", "sibenik-mtllib"), scene_convert.CONVERTERS)
 
+    def test_bench_lists_as_the_scripts_read_them(self):
+        sys.path.insert(0, str(ROOT / "bench"))
+        import bench_common  # noqa: E402
+        for name in ("bench", "bench_dynamic", "paper", "report", "deviations", "trace_benchmark"):
+            scenes = bench_common.scene_list(name)
+            self.assertTrue(scenes, name)
+            for s in scenes:
+                self.assertIn(len(s.camera_flags), (0, 6), s)
+        for s in bench_common.scene_list("report"):  # bench/report.py needs them bundled
+            self.assertTrue((ROOT / "assets" / s.relative).is_file(), s)
+        sponza = next(s for s in bench_common.scene_list("paper") if s.name == "sponza")
+        self.assertEqual(sponza.camera_flags,
+                         ["--eye", "14,3,0", "--look-at", "0,5,0", "--fov", "60"])
+
     def test_scenes_already_there_match(self):
         result = subprocess.run([sys.executable, str(SCRIPT), "--list"], capture_output=True,
                                 text=True, timeout=60)

@@ -45,14 +45,25 @@ double coloured(const Image& image, int x0, int y0, int x1, int y1) {
 
 bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-/// The viewer under a virtual X server. In sanitizer builds leak checking is off for this
-/// process only: Mesa's driver (dlopen'ed, unloaded at exit) leaks a few hundred bytes that
-/// LeakSanitizer cannot attribute. The viewer's own parts are leak-checked in
-/// edacrt_viewer_core_tests.
+/// The viewer (with `args`) under a virtual X server of a screen of width x height. In
+/// sanitizer builds leak checking is off for this process only: Mesa's driver (dlopen'ed,
+/// unloaded at exit) leaks a few hundred bytes that LeakSanitizer cannot attribute. The
+/// viewer's own parts are leak-checked in edacrt_viewer_core_tests.
+///
+/// -noreset: without it Xvfb resets when its last client (the viewer) disconnects and signals
+/// xvfb-run (SIGUSR1, its "ready" signal) again. That signal can arrive while xvfb-run's exit
+/// trap removes its temporary folder, and dash (Debian's /bin/sh, 0.5.12) then sets `$?` to
+/// the exit status the script is leaving with: after a viewer that exited 1, the successful
+/// `rm` reads as failed and xvfb-run exits 5 ("problem while cleaning up temporary
+/// directory") instead of 1, by chance.
+std::string xvfb_viewer(int screen_width, int screen_height, const std::string& args) {
+    return "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 " + std::to_string(screen_width) +
+           "x" + std::to_string(screen_height) + "x24 -noreset' " EDACRT_VIEWER " " + args;
+}
+
+/// The viewer in a 1280x800 window filling the virtual screen.
 std::string viewer_under_xvfb(const std::string& args) {
-    return "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1280x800x24' " EDACRT_VIEWER
-           " --width 1280 --height 800 " +
-           args;
+    return xvfb_viewer(1280, 800, "--width 1280 --height 800 " + args);
 }
 
 // Before any window: a script that is a FIFO or a directory is refused, not waited on (no
@@ -201,11 +212,10 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
 test::CliResult run_viewer_script(const std::filesystem::path& dir, const std::string& script,
                                   int width, int height, const std::string& args) {
     std::ofstream(dir / "script.txt") << script;
-    return test::run_command(
-        "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1920x1080x24' " EDACRT_VIEWER
-        " --width " +
-        std::to_string(width) + " --height " + std::to_string(height) + " --script " +
-        (dir / "script.txt").string() + " " + args);
+    return test::run_command(xvfb_viewer(1920, 1080,
+                                         "--width " + std::to_string(width) + " --height " +
+                                             std::to_string(height) + " --script " +
+                                             (dir / "script.txt").string() + " " + args));
 }
 
 TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {

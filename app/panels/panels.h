@@ -35,8 +35,12 @@ void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const 
 /// Where image pixel (x, y) of a width x height image appears in the window.
 ImVec2 image_to_window(const ViewerState& state, float x, float y, int width, int height);
 
-/// An error, wrapped, in red.
-void error_text(const std::string& text);
+/// An error, wrapped, in red; reported as the item `name` and as an error shown.
+void error_text(ViewerState& state, const char* name, const std::string& text);
+
+/// Reports where the last item was drawn, as `name` ("Tab/widget"), for the script's
+/// `layout FILE`.
+void report_item(ViewerState& state, std::string name);
 
 /// A table cell's text; counts cells too narrow for it (the layout check reports them).
 void cell_text(const char* format, ...) IM_FMTARGS(1);

@@ -26,6 +26,8 @@ void draw_scene_tab(ViewerState& s) {
         ImGui::TextWrapped("%s", s.scene_list.hint.c_str());
         ImGui::PopStyleColor();
         report_item(s, "Scene/hint");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("fetched into %s", s.scene_list.scenes_folder.c_str());
     }
     ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Load").x -
                             2.0f * ImGui::GetStyle().FramePadding.x -

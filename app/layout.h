@@ -2,6 +2,7 @@
 // The viewer's fixed layout, computed from the window size every frame (ImGui 1.86 has no
 // docking): controls in a left column, analysis below the image, the image in a region no
 // panel overlaps. Pure geometry, tested headless.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,8 @@ namespace edacrt::app {
 
 struct Rect {
     float x = 0.0f, y = 0.0f, w = 0.0f, h = 0.0f;
+
+    bool operator==(const Rect&) const = default;
 
     float right() const { return x + w; }
     float bottom() const { return y + h; }
@@ -48,6 +51,16 @@ struct PanelPlacement {
     std::string name;
     Rect rect;
     int clipped_cells = 0;  // table cells whose text was wider than the cell
+    // The widths of its table cells, hashed: changes while ImGui fits columns to their text.
+    std::uint64_t cell_widths = 0;
+};
+
+/// A widget or window the panels report where it was drawn (the script's `layout FILE`).
+struct NamedRect {
+    std::string name;
+    Rect rect;
+
+    bool operator==(const NamedRect&) const = default;
 };
 
 /// The layout's defects: panels that overlap the image or leave the window, clipped cells.

@@ -62,8 +62,8 @@ bool add_public_scenes(const fs::path& assets, const fs::path& scenes, SceneCata
     catalog.missing = missing;
     if (missing > 0)
         catalog.hint = std::to_string(missing) + (missing == 1 ? " more scene" : " more scenes") +
-                       ": run scripts/get-scenes (see assets/SCENES.md) to fetch into " +
-                       scenes.string();
+                       ": run scripts/get-scenes (see assets/SCENES.md)";
+    catalog.scenes_folder = scenes.string();
     return true;
 }
 

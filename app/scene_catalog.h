@@ -19,7 +19,10 @@ struct SceneCatalog {
     // (manifest order), then the built-ins.
     std::vector<CatalogEntry> entries;
     std::string hint;  // "N more scenes: run scripts/get-scenes ..." or empty
-    int missing = 0;   // public scenes absent from the scenes folder
+    // Where they go (the hint's tooltip: an absolute path would wrap the hint over lines as
+    // many as the checkout's path is long).
+    std::string scenes_folder;
+    int missing = 0;  // public scenes absent from the scenes folder
 };
 
 /// The catalog for the bundled scenes under `assets` (and its manifest, assets/scenes.json)

@@ -11,8 +11,9 @@
 namespace edacrt::app {
 namespace {
 
-// What a verb's arguments are: words, counts (whole numbers >= 0), or finite numbers.
-enum class Args { words, count, real };
+// What a verb's arguments are: words, counts (whole numbers >= 0), finite numbers, fractions
+// (0 to 1) or durations (seconds, more than 0 and at most a day).
+enum class Args { words, count, real, fraction, seconds };
 
 struct Verb {
     std::string_view name;
@@ -40,7 +41,27 @@ constexpr Verb kVerbs[] = {{"set", 2},
                            {"wait-analysis", 0},
                            {"compare", 0},
                            {"wait-compare", 0},
-                           {"wait-played", 1, Args::count}};
+                           {"wait-played", 1, Args::count},
+                           {"wait-loaded", 0},
+                           {"wait-error", 0},
+                           {"wait-settled", 0},
+                           {"timeout", 1, Args::seconds},
+                           {"layout", 1},
+                           {"pick-image", 2, Args::fraction}};
+
+/// What the verb's numbers must be, for its error message.
+std::string kind_text(Args kind) {
+    switch (kind) {
+        case Args::count:
+            return "whole numbers from 0";
+        case Args::fraction:
+            return "numbers from 0 to 1";
+        case Args::seconds:
+            return "seconds, more than 0 and at most 86400";
+        default:
+            return "numbers";
+    }
+}
 
 /// The whole word as a number of the verb's kind, or nullopt.
 std::optional<double> parse_number(const std::string& word, Args kind) {
@@ -50,6 +71,8 @@ std::optional<double> parse_number(const std::string& word, Args kind) {
         return std::nullopt;
     if (kind == Args::count && !(value >= 0.0 && value <= 1e9 && value == std::floor(value)))
         return std::nullopt;
+    if (kind == Args::fraction && !(value >= 0.0 && value <= 1.0)) return std::nullopt;
+    if (kind == Args::seconds && !(value > 0.0 && value <= 86400.0)) return std::nullopt;
     return value;
 }
 
@@ -79,9 +102,8 @@ std::vector<ScriptCommand> parse_script(std::string_view text, const std::string
             for (const std::string& word : command.args) {
                 const auto value = parse_number(word, verb->kind);
                 if (!value)
-                    fail("'" + command.verb + "' takes " +
-                         (verb->kind == Args::count ? "whole numbers from 0" : "numbers") +
-                         ", got '" + word + "'");
+                    fail("'" + command.verb + "' takes " + kind_text(verb->kind) + ", got '" +
+                         word + "'");
                 command.numbers.push_back(*value);
             }
         commands.push_back(std::move(command));

@@ -308,6 +308,9 @@ int run_viewer(const ViewerOptions& options) {
             advance_playback(s, s.frame && s.frame->request == request_id && !s.frame->preview, dt);
             s.analysis_stale = s.analysis && analysis_stale(*s.analysis, submitted);
             s.placements.clear();
+            s.items.clear();
+            s.tabs_open.clear();
+            s.errors_shown.clear();
             s.recursion_shown = false;
             draw_controls(s);
             draw_analysis(s, heat_max);
@@ -320,6 +323,10 @@ int run_viewer(const ViewerOptions& options) {
             glfwGetFramebufferSize(window, &fb_width, &fb_height);
             const float scale_x = io.DisplaySize.x > 0 ? float(fb_width) / io.DisplaySize.x : 1.0f;
             const float scale_y = io.DisplaySize.y > 0 ? float(fb_height) / io.DisplaySize.y : 1.0f;
+            s.window_width = io.DisplaySize.x;
+            s.window_height = io.DisplaySize.y;
+            s.framebuffer_scale_x = scale_x;
+            s.framebuffer_scale_y = scale_y;
             const PixelRect region = to_pixels(image, scale_x, scale_y);
             if (region.w > 0 && region.h > 0) {
                 RenderRequest request = make_request(s, region.w, region.h);
@@ -458,11 +465,14 @@ int run_viewer(const ViewerOptions& options) {
             // new table columns from the previous frame's contents.
             const bool settled = s.frame && s.frame == shown_last_frame;
             shown_last_frame = s.frame;
-            const int shown_spp =
-                settled && s.frame->request == request_id && !s.frame->preview ? s.frame->spp : 0;
+            const bool current = s.frame && s.frame->request == request_id && !s.frame->preview;
+            const int shown_spp = settled && current ? s.frame->spp : 0;
+            // The image region shows the view asked for of the newest pass received.
+            const bool image_current = current && uploaded == s.frame && uploaded_view == s.view &&
+                                       (s.view == View::render || heat);
             try {
                 if (script) {
-                    script->step(s, shown_spp, screenshot, quit);
+                    script->step(s, {shown_spp, image_current}, screenshot, quit);
                     if (!script->active() && options.frames == 0) quit = true;
                 }
                 // --frames: at the last frame, once a full-resolution pass is on screen.

@@ -166,6 +166,14 @@ struct ViewerState {
     std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
     std::vector<PanelPlacement> placements;
     std::vector<std::string> layout_problems;  // of the last frame (the script's check-layout)
+    // What the last frame drew (the script's waits and `layout FILE`): widgets the panels
+    // report (named "Tab/widget", tab headers "Tab/tab"), the tabs whose contents were drawn,
+    // the error messages shown.
+    std::vector<NamedRect> items;
+    std::vector<std::string> tabs_open;
+    std::vector<std::string> errors_shown;
+    float window_width = 0.0f, window_height = 0.0f;  // ImGui's units (window coordinates)
+    float framebuffer_scale_x = 1.0f, framebuffer_scale_y = 1.0f;  // pixels per unit
 
     // Camera panel.
     Bookmarks bookmarks;

@@ -59,6 +59,9 @@ TEST_F(SceneCatalogTest, BundledThenPublicPresentOrNotThenBuiltins) {
     EXPECT_EQ(catalog.missing, 1);
     EXPECT_NE(catalog.hint.find("1 more scene: run scripts/get-scenes"), std::string::npos)
         << catalog.hint;
+    // The folder is the hint's tooltip: the hint's length does not depend on the checkout's.
+    EXPECT_EQ(catalog.hint.find(dir_.string()), std::string::npos) << catalog.hint;
+    EXPECT_EQ(catalog.scenes_folder, scenes().string());
 }
 
 TEST_F(SceneCatalogTest, NoHintWhenEverythingIsThere) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
 
@@ -16,6 +18,7 @@
 #include "script_runner.h"
 #include "temp_dir.h"
 #include "util/error.h"
+#include "viewer_jobs.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -230,10 +233,167 @@ std::string run_script(ViewerState& state, const std::string& script) {
         std::string screenshot;
         bool quit = false;
         for (int frame = 0; frame < 100 && runner.active() && !quit; ++frame) {
-            runner.step(state, 0, screenshot, quit);
+            runner.step(state, {}, screenshot, quit);
             state.save_requested = ViewerState::Save::none;  // "saved"
         }
     });
+}
+
+// The waiting verbs, `timeout`, `layout` and `pick-image` parse with their arguments checked.
+TEST(Script, WaitsTimeoutLayoutAndPickImageParse) {
+    const auto commands = parse_script(
+        "wait-loaded\nwait-error\nwait-settled\ntimeout 2.5\nlayout out/l.json\n"
+        "pick-image 0.5 1\n",
+        "s");
+    ASSERT_EQ(commands.size(), 6u);
+    EXPECT_EQ(commands[2].verb, "wait-settled");
+    EXPECT_EQ(commands[3].numbers, std::vector<double>{2.5});
+    EXPECT_EQ(commands[4].args, std::vector<std::string>{"out/l.json"});
+    EXPECT_EQ(commands[5].numbers, (std::vector<double>{0.5, 1.0}));
+    for (const auto& [script, message] : std::vector<std::pair<std::string, std::string>>{
+             {"wait-error now\n", "s:1: 'wait-error' takes 0 argument(s)"},
+             {"wait-loaded x\n", "s:1: 'wait-loaded' takes 0 argument(s)"},
+             {"quit\nwait-settled 3\n", "s:2: 'wait-settled' takes 0 argument(s)"},
+             {"timeout 0\n",
+              "s:1: 'timeout' takes seconds, more than 0 and at most 86400, got '0'"},
+             {"timeout -1\n",
+              "s:1: 'timeout' takes seconds, more than 0 and at most 86400, got '-1'"},
+             {"timeout 1e9\n", "'timeout' takes seconds, more than 0 and at most 86400, got '1e9'"},
+             {"timeout soon\n", "got 'soon'"},
+             {"timeout\n", "s:1: 'timeout' takes 1 argument(s)"},
+             {"layout\n", "s:1: 'layout' takes 1 argument(s)"},
+             {"pick-image 0.5\n", "s:1: 'pick-image' takes 2 argument(s)"},
+             {"pick-image 1.5 0\n", "s:1: 'pick-image' takes numbers from 0 to 1, got '1.5'"},
+             {"pick-image 0 -0.1\n", "s:1: 'pick-image' takes numbers from 0 to 1, got '-0.1'"},
+             {"pick-image nan 0\n", "got 'nan'"},
+         })
+        EXPECT_NE(error_of([&] { parse_script(script, "s"); }).find(message), std::string::npos)
+            << script << ": " << error_of([&] { parse_script(script, "s"); });
+}
+
+// Every wait fails the script at its line once its timeout has passed, naming what it waited
+// for; a condition that holds ends the wait at once.
+TEST(Script, WaitsTimeOutWithAClearMessage) {
+    for (const auto& [wait, what] : std::vector<std::pair<std::string, std::string>>{
+             {"wait-spp 4", "4 spp"},
+             {"wait-error", "an error message on screen"},
+             {"wait-loaded", "the scene to load"},
+             {"wait-settled", "the screen to settle"},
+         }) {
+        ViewerState s;
+        ScriptRunner runner(parse_script("timeout 0.05\n" + wait + "\nquit\n", "s"));
+        std::string screenshot;
+        bool quit = false;
+        runner.step(s, {}, screenshot, quit);
+        EXPECT_TRUE(runner.active()) << wait;
+        std::this_thread::sleep_for(std::chrono::milliseconds(80));
+        const std::string error = error_of([&] { runner.step(s, {}, screenshot, quit); });
+        EXPECT_EQ(error.rfind("script line 2: timed out after 0.05 s waiting for " + what, 0), 0u)
+            << wait << ": " << error;
+        EXPECT_FALSE(quit);
+    }
+    ViewerState s;
+    s.errors_shown = {"a 1280x800 render needs more memory"};
+    EXPECT_EQ(run_script(s, "timeout 0.05\nwait-error\n"), "");
+}
+
+// wait-error: an error drawn in the last frame, or with the panels hidden one they would show.
+TEST(Script, WaitErrorWaitsForAnErrorOnScreen) {
+    ViewerState s;
+    std::string screenshot;
+    bool quit = false;
+    ScriptRunner runner(parse_script("wait-error\nquit\n", "s"));
+    s.scene_error = "/no/such.obj: no such file";  // held, but the frame did not draw it
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_FALSE(quit);
+    s.errors_shown = {s.scene_error};  // drawn by the Scene tab
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_TRUE(quit);
+
+    ViewerState hidden;
+    hidden.panels_hidden = true;
+    hidden.resolution_error = "a 1280x800 path render needs about 346 MB";
+    EXPECT_EQ(run_script(hidden, "wait-error\n"), "");
+}
+
+// wait-loaded: the scene asked for is loaded and its render asked for; a failed load fails the
+// script with the loader's message.
+TEST(Script, WaitLoadedFailsOnALoadError) {
+    ViewerState s;
+    std::string screenshot;
+    bool quit = false;
+    ScriptRunner runner(parse_script("set scene builtin:cornell\nwait-loaded\nquit\n", "s"));
+    runner.step(s, {}, screenshot, quit);
+    ASSERT_EQ(s.pending_loads, std::vector<std::string>{"builtin:cornell"});
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_FALSE(quit) << "the load is still pending";
+    load_into(s, "builtin:cornell");  // what the viewer does at the start of a frame
+    s.pending_loads.clear();
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_FALSE(quit) << "the render is not asked for yet";
+    s.submitted.scene = s.scene;
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_TRUE(quit);
+
+    s.scene_error = "/no/such/scene.obj: no such file";
+    EXPECT_EQ(run_script(s, "wait-loaded\n"),
+              "script line 1: the scene did not load: /no/such/scene.obj: no such file");
+}
+
+// wait-settled: the image shows the view asked for and the layout has not changed for three
+// frames; a tab asked for and not yet drawn keeps it waiting.
+TEST(Script, WaitSettledWaitsForAStillLayout) {
+    ViewerState s;
+    std::string screenshot;
+    bool quit = false;
+    ScriptRunner runner(parse_script("tab Statistics\nwait-settled\nquit\n", "s"));
+    s.placements = {{"Controls", {0, 0, 300, 800}, 0, 1}};
+    runner.step(s, {4, true}, screenshot, quit);  // frame 1
+    EXPECT_EQ(s.select_tabs, std::vector<std::string>{"Statistics"});
+    s.select_tabs.clear();                        // the panel brought it forward
+    runner.step(s, {4, true}, screenshot, quit);  // frame 2: the same layout once
+    s.placements[0].cell_widths = 2;              // columns fitting
+    runner.step(s, {4, true}, screenshot, quit);
+    runner.step(s, {4, true}, screenshot, quit);
+    EXPECT_FALSE(quit);
+    runner.step(s, {4, false}, screenshot, quit);  // a new pass not yet uploaded
+    EXPECT_FALSE(quit);
+    runner.step(s, {4, true}, screenshot, quit);  // three frames alike
+    EXPECT_TRUE(quit);
+}
+
+// `layout FILE` writes the last frame's regions, panels and reported widgets; pick-image
+// picks at a fraction of the image region.
+TEST(Script, LayoutWritesTheFramesRectanglesAndPickImageUsesTheImageRegion) {
+    const test::TempDir dir;
+    ViewerState s;
+    s.window_width = 1280;
+    s.window_height = 800;
+    s.layout = compute_layout({1280, 800, 13, 19, false, true, false});
+    s.placements = {{"Controls", s.layout.controls, 0, 7}};
+    s.items = {{"Scene/scenes", {8, 60, 335, 19}}};
+    s.tabs_open = {"Scene"};
+    const auto file = dir.path() / "new" / "layout.json";
+    ScriptRunner runner(parse_script("layout " + file.string() + "\npick-image 0.5 1\n", "s"));
+    std::string screenshot;
+    bool quit = false;
+    runner.step(s, {}, screenshot, quit);
+    const auto json = nlohmann::json::parse(std::ifstream(file));
+    EXPECT_EQ(json["window"]["w"], 1280);
+    EXPECT_EQ(json["framebuffer_scale"]["x"], 1);
+    EXPECT_EQ(json["image"]["x"], s.layout.image.x);
+    EXPECT_EQ(json["image"]["w"], s.layout.image.w);
+    EXPECT_EQ(json["panels"]["Controls"]["h"], 800);
+    EXPECT_EQ(json["panels"]["Controls"]["clipped_cells"], 0);
+    EXPECT_EQ(json["items"]["Scene/scenes"]["y"], 60);
+    EXPECT_EQ(json["tabs_open"], nlohmann::json::array({"Scene"}));
+    const auto pick = runner.take_pick();
+    ASSERT_TRUE(pick);
+    EXPECT_EQ(pick->x, s.layout.image.x + 0.5f * s.layout.image.w);
+    EXPECT_EQ(pick->y, s.layout.image.bottom() - 0.5f) << "inside the region";
+    EXPECT_NE(run_script(s, "layout " + dir.path().string() + "\n").find("script line 1: "),
+              std::string::npos)
+        << "a folder is not a layout file";
 }
 
 // `set` checks what the widgets allow, from the same table (setting_range) or the renderer's
@@ -270,12 +430,12 @@ TEST(Script, FailedSavesAndRenderErrorsFailTheScript) {
     ScriptRunner runner(parse_script("frames 0\nsave-linear /x.pfm\n", "s"));
     std::string screenshot;
     bool quit = false;
-    runner.step(s, 0, screenshot, quit);
+    runner.step(s, {}, screenshot, quit);
     EXPECT_EQ(s.save_requested, ViewerState::Save::linear);
     EXPECT_TRUE(runner.active()) << "the outcome of the save is still to check";
     s.save_requested = ViewerState::Save::none;  // what the viewer does on a failed save
     s.save_error = "/x.pfm: cannot create PFM";
-    EXPECT_EQ(error_of([&] { runner.step(s, 0, screenshot, quit); }),
+    EXPECT_EQ(error_of([&] { runner.step(s, {}, screenshot, quit); }),
               "script line 2: /x.pfm: cannot create PFM");
 
     EXPECT_NE(run_script(s, "write-command /dev/full\n")

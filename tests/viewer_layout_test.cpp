@@ -213,11 +213,17 @@ TEST(ScriptRunner, StepsChangeTheStateAndCheckLayoutFailsOnAProblem) {
                      "test"));
     std::string screenshot;
     bool quit = false;
-    runner.step(s, 0, screenshot, quit);  // a `set` ends the frame's steps
+    runner.step(s, {}, screenshot, quit);  // a `set` ends the frame's steps
     EXPECT_EQ(s.ui.params.bins, 12);
-    s.layout_problems = {"Analysis overlaps the image"};
-    EXPECT_THROW(runner.step(s, 0, screenshot, quit), InputError);
+    runner.step(s, {}, screenshot, quit);  // so do tab, panels, analysis (view, help)
     EXPECT_EQ(s.select_tabs, std::vector<std::string>{"Heat map"});
+    EXPECT_FALSE(s.panels_hidden) << "the next frame draws the tab first";
+    runner.step(s, {}, screenshot, quit);
+    EXPECT_TRUE(s.panels_hidden);
+    EXPECT_TRUE(s.analysis_open);
+    runner.step(s, {}, screenshot, quit);
+    s.layout_problems = {"Analysis overlaps the image"};
+    EXPECT_THROW(runner.step(s, {}, screenshot, quit), InputError);
     EXPECT_TRUE(s.panels_hidden);
     EXPECT_FALSE(s.analysis_open);
     const auto pick = runner.take_pick();
@@ -225,7 +231,7 @@ TEST(ScriptRunner, StepsChangeTheStateAndCheckLayoutFailsOnAProblem) {
     EXPECT_EQ(pick->x, 10.0f);
     EXPECT_EQ(pick->y, 20.0f);
     s.layout_problems.clear();
-    runner.step(s, 0, screenshot, quit);  // the failed check-layout again, now fine
+    runner.step(s, {}, screenshot, quit);  // the failed check-layout again, now fine
     EXPECT_TRUE(quit);
     EXPECT_FALSE(runner.active());
 }

@@ -1,7 +1,9 @@
 // The viewer under xvfb-run (Mesa llvmpipe): it starts on the Cornell box, renders, and a
 // scripted session saves screenshots of the render, every heat map, and the render after a
 // parameter change. The checks look at image regions: the panels are drawn, the walls have
-// their colours, the heat maps are heat maps.
+// their colours, the heat maps are heat maps. Scripts wait for the state they check
+// (wait-spp, wait-settled, wait-error, wait-loaded: no frame counts), and the regions sampled
+// are the ones the viewer's `layout FILE` reports for the frame of the screenshot.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -24,35 +26,101 @@
 namespace edacrt {
 namespace {
 
-/// Mean linear colour of the rectangle [x0, x1) x [y0, y1).
-glm::vec3 mean(const Image& image, int x0, int y0, int x1, int y1) {
-    glm::dvec3 sum(0.0);
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) sum += glm::dvec3(image.at(x, y));
-    return glm::vec3(sum / double((x1 - x0) * (y1 - y0)));
+/// A rectangle of a screenshot, in pixels: [x0, x1) x [y0, y1).
+struct Region {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+
+    int area() const { return std::max(x1 - x0, 0) * std::max(y1 - y0, 0); }
+    /// The part [u0, u1) x [v0, v1) of it, in fractions of its width and height.
+    Region part(double u0, double v0, double u1, double v1) const {
+        const auto at = [](int a, int b, double t) { return a + int(std::lround((b - a) * t)); };
+        return {at(x0, x1, u0), at(y0, y1, v0), at(x0, x1, u1), at(y0, y1, v1)};
+    }
+    bool contains(const Region& r) const {
+        return r.x0 >= x0 && r.y0 >= y0 && r.x1 <= x1 && r.y1 <= y1;
+    }
+};
+
+std::ostream& operator<<(std::ostream& out, const Region& r) {
+    return out << "[" << r.x0 << ", " << r.x1 << ") x [" << r.y0 << ", " << r.y1 << ")";
 }
 
-/// Fraction of pixels in the rectangle whose channels spread by more than 0.15 (coloured).
-double coloured(const Image& image, int x0, int y0, int x1, int y1) {
+/// The layout the viewer's `layout FILE` wrote (in the frame of the screenshot that follows
+/// it), its rectangles in screenshot pixels.
+class ShownLayout {
+  public:
+    explicit ShownLayout(const std::filesystem::path& file)
+        : json_(nlohmann::json::parse(std::ifstream(file))) {}
+
+    Region image() const { return pixels(json_.at("image")); }
+    Region panel(const std::string& name) const { return pixels(find("panels", name)); }
+    Region item(const std::string& name) const { return pixels(find("items", name)); }
+    const nlohmann::json& json() const { return json_; }
+
+  private:
+    const nlohmann::json& find(const char* group, const std::string& name) const {
+        if (!json_.at(group).contains(name))
+            throw std::runtime_error(std::string("the layout has no ") + group + " '" + name +
+                                     "': " + json_.dump());
+        return json_.at(group).at(name);
+    }
+    Region pixels(const nlohmann::json& r) const {
+        const double sx = json_.at("framebuffer_scale").at("x");
+        const double sy = json_.at("framebuffer_scale").at("y");
+        const double x = r.at("x"), y = r.at("y"), w = r.at("w"), h = r.at("h");
+        return {int(std::lround(x * sx)), int(std::lround(y * sy)), int(std::lround((x + w) * sx)),
+                int(std::lround((y + h) * sy))};
+    }
+    nlohmann::json json_;
+};
+
+/// Mean linear colour of the region (NaN when it is empty).
+glm::vec3 mean(const Image& image, const Region& r) {
+    glm::dvec3 sum(0.0);
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) sum += glm::dvec3(image.at(x, y));
+    return glm::vec3(sum / double(r.area()));
+}
+
+/// Fraction of pixels in the region whose channels spread by more than 0.15 (coloured).
+double coloured(const Image& image, const Region& r) {
     int count = 0;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) {
             const glm::vec3 c = image.at(x, y);
             count += std::max({c.x, c.y, c.z}) - std::min({c.x, c.y, c.z}) > 0.15f;
         }
-    return double(count) / double((x1 - x0) * (y1 - y0));
+    return double(count) / double(r.area());
+}
+
+/// Occurrences of `text` in `output`.
+std::size_t count(const std::string& output, const std::string& text) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; (at = output.find(text, at)) != std::string::npos; ++at) ++n;
+    return n;
 }
 
 bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
 
-/// The viewer under a virtual X server. In sanitizer builds leak checking is off for this
-/// process only: Mesa's driver (dlopen'ed, unloaded at exit) leaks a few hundred bytes that
-/// LeakSanitizer cannot attribute. The viewer's own parts are leak-checked in
-/// edacrt_viewer_core_tests.
+/// The viewer (with `args`) under a virtual X server of a screen of width x height. In
+/// sanitizer builds leak checking is off for this process only: Mesa's driver (dlopen'ed,
+/// unloaded at exit) leaks a few hundred bytes that LeakSanitizer cannot attribute. The
+/// viewer's own parts are leak-checked in edacrt_viewer_core_tests.
+///
+/// -noreset: without it Xvfb resets when its last client (the viewer) disconnects and signals
+/// xvfb-run (SIGUSR1, its "ready" signal) again. That signal can arrive while xvfb-run's exit
+/// trap removes its temporary folder, and dash (Debian's /bin/sh, 0.5.12) then sets `$?` to
+/// the exit status the script is leaving with: after a viewer that exited 1, the successful
+/// `rm` reads as failed and xvfb-run exits 5 ("problem while cleaning up temporary
+/// directory") instead of 1, by chance.
+std::string xvfb_viewer(int screen_width, int screen_height, const std::string& args) {
+    return "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 " + std::to_string(screen_width) +
+           "x" + std::to_string(screen_height) + "x24 -noreset' " EDACRT_VIEWER " " + args;
+}
+
+/// The viewer in a 1280x800 window filling the virtual screen.
 std::string viewer_under_xvfb(const std::string& args) {
-    return "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1280x800x24' " EDACRT_VIEWER
-           " --width 1280 --height 800 " +
-           args;
+    return xvfb_viewer(1280, 800, "--width 1280 --height 800 " + args);
 }
 
 // Before any window: a script that is a FIFO or a directory is refused, not waited on (no
@@ -80,68 +148,105 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
         std::filesystem::temp_directory_path() / ("edacrt_viewer_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
-    // The panels hidden: the image fills the window (the layout is tested below).
+    const auto layout = [&](const std::string& name) { return (dir / (name + ".json")); };
+    // Each screenshot with the layout of its frame.
+    const auto take = [&](const std::string& name) {
+        return "layout " + layout(name).string() + "\nscreenshot " + shot(name) + "\n";
+    };
+    // The panels hidden: the image fills the window (the layout is tested below). The broken
+    // scene's error is waited for hidden (held for the panel), then drawn in the Scene tab.
     std::ofstream(dir / "script.txt")
-        << "panels hidden\nwait-spp 4\nscreenshot " << shot("render")
-        << "\nview box\nframes 2\nscreenshot " << shot("box")
-        << "\nview triangle\nframes 2\nscreenshot " << shot("triangle")
-        << "\nview depth\nframes 2\nscreenshot " << shot("depth")
-        << "\nview order\nframes 2\nscreenshot " << shot("order")
-        << "\nview render\nset method bvh\nset bins 16\n"
-           "set integrator ao\nwait-spp 2\nscreenshot "
-        << shot("changed") << "\nset scene /no/such/scene.obj\nframes 2\nwait-spp 3\nscreenshot "
-        << shot("after_bad_scene") << "\npanels shown\nframes 3\ncheck-layout\nscreenshot "
-        << shot("panels") << "\n";
+        << "panels hidden\nwait-spp 4\n"
+        << take("render") << "view box\nwait-settled\n"
+        << take("box") << "view triangle\nwait-settled\n"
+        << take("triangle") << "view depth\nwait-settled\n"
+        << take("depth") << "view order\nwait-settled\n"
+        << take("order")
+        << "view render\nset method bvh\nset bins 16\nset integrator ao\nwait-spp 2\n"
+        << take("changed") << "set scene /no/such/scene.obj\nwait-error\nwait-settled\n"
+        << take("after_bad_scene") << "panels shown\nwait-error\nwait-settled\ncheck-layout\n"
+        << take("panels");
     const std::string scene =
         (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string();
     const auto result = test::run_command(
         viewer_under_xvfb("--script " + (dir / "script.txt").string() + " " + scene));
     ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(count(result.output, "error shown: /no/such/scene.obj"), 2u) << result.output;
 
     const Image render = read_png(shot("render"));
     ASSERT_EQ(render.width, 1280);
     ASSERT_EQ(render.height, 800);
-    // The render: the red left wall, the green right wall, a lit back wall.
-    const glm::vec3 left = mean(render, 380, 250, 440, 400),
-                    right = mean(render, 840, 200, 900, 380);
+    // The render: the red left wall, the green right wall, a lit back wall (where they are in
+    // the image region: here the whole window).
+    const Region image = ShownLayout(layout("render")).image();
+    EXPECT_EQ(image.area(), 1280 * 800) << image;
+    const Region left_wall = image.part(0.297, 0.3125, 0.344, 0.5),
+                 right_wall = image.part(0.656, 0.25, 0.703, 0.475),
+                 back_wall = image.part(0.4375, 0.275, 0.5625, 0.375);
+    const glm::vec3 left = mean(render, left_wall), right = mean(render, right_wall);
     EXPECT_GT(left.x, 2.0f * left.y) << "red wall";
     EXPECT_GT(right.y, 1.5f * right.x) << "green wall";
-    EXPECT_GT(mean(render, 560, 220, 720, 300).x, 0.02f) << "back wall lit";
-    // The panels: the scene tab's widgets (blue frames, white text) at the top left.
-    const glm::vec3 widgets = mean(read_png(shot("panels")), 8, 60, 300, 110);
-    EXPECT_GT(widgets.z, 1.5f * widgets.x) << "ImGui widgets";
-    EXPECT_GT(widgets.z, 0.05f) << "ImGui widgets";
+    EXPECT_GT(mean(render, back_wall).x, 0.02f) << "back wall lit";
+
+    // The panels: the Scene tab's widgets (blue frames and buttons, white text) where the
+    // layout says, its header one line whatever the checkout's path (it names the file only),
+    // the broken scene's error in red.
+    const ShownLayout panels(layout("panels"));
+    const Image shown = read_png(shot("panels"));
+    const Region controls = panels.panel("Controls");
+    for (const char* name : {"Scene/label", "Scene/scenes", "Scene/load", "Scene/error"})
+        EXPECT_TRUE(controls.contains(panels.item(name))) << name << " " << panels.item(name);
+    const Region label = panels.item("Scene/label"), list = panels.item("Scene/scenes");
+    EXPECT_LT(label.y1 - label.y0, list.y1 - list.y0) << "the header wraps: " << label;
+    if (panels.json()["items"].contains("Scene/hint")) {  // some public scenes not fetched
+        const Region hint = panels.item("Scene/hint");    // the scenes folder is its tooltip
+        EXPECT_LE(hint.y1 - hint.y0, 2 * (label.y1 - label.y0)) << "the hint wraps: " << hint;
+    }
+    EXPECT_FALSE(panels.image().contains(list));
+    for (const char* name : {"Scene/scenes", "Scene/load"}) {
+        const glm::vec3 widgets = mean(shown, panels.item(name));
+        EXPECT_GT(widgets.z, 1.5f * widgets.x) << "ImGui widgets: " << name;
+        EXPECT_GT(widgets.z, 0.05f) << "ImGui widgets: " << name;
+    }
+    const glm::vec3 error = mean(shown, panels.item("Scene/error"));
+    EXPECT_GT(error.x, 2.0f * error.z) << "the error in red";
+    EXPECT_GT(error.x, 0.05f) << "the error in red";
 
     for (const char* heat : {"box", "triangle", "depth", "order"}) {
-        const Image image = read_png(shot(heat));
+        const Image map = read_png(shot(heat));
+        const Region back = ShownLayout(layout(heat)).image().part(0.4375, 0.275, 0.5625, 0.375);
         // The box interior shows the colour ramp, not the render (few order misses here: the
         // ramp's dark end, so only the difference is checked for that one).
         if (std::string(heat) != "order") {
-            EXPECT_GT(coloured(image, 560, 220, 720, 300), 0.9) << heat;
+            EXPECT_GT(coloured(map, back), 0.9) << heat;
         }
-        const glm::vec3 d = mean(image, 560, 220, 720, 300) - mean(render, 560, 220, 720, 300);
+        const glm::vec3 d = mean(map, back) - mean(render, back_wall);
         EXPECT_GT(glm::length(d), 0.05f) << heat;
     }
     const Image changed = read_png(shot("changed"));  // ambient occlusion: grey walls
-    const glm::vec3 wall = mean(changed, 380, 250, 440, 400);
+    const Region changed_wall =
+        ShownLayout(layout("changed")).image().part(0.297, 0.3125, 0.344, 0.5);
+    const glm::vec3 wall = mean(changed, changed_wall);
     EXPECT_GT(wall.x, 0.05f);
     EXPECT_LT(std::abs(wall.x - wall.y), 0.02f) << "ao is grey";
     // A broken scene file leaves the current scene on screen (its error shows in the panel).
     const Image after = read_png(shot("after_bad_scene"));
-    EXPECT_LT(glm::length(mean(after, 380, 250, 440, 400) - wall), 0.02f);
+    const Region after_wall =
+        ShownLayout(layout("after_bad_scene")).image().part(0.297, 0.3125, 0.344, 0.5);
+    EXPECT_LT(glm::length(mean(after, after_wall) - wall), 0.02f);
     if (!HasFailure()) std::filesystem::remove_all(dir);  // kept for a look otherwise
 }
 
-/// Fraction of pixels in the rectangle close to the colour c (8-bit sRGB).
-double near_colour(const Image& image, int x0, int y0, int x1, int y1, glm::vec3 srgb) {
+/// Fraction of pixels in the region close to the colour c (8-bit sRGB).
+double near_colour(const Image& image, const Region& r, glm::vec3 srgb) {
     int count = 0;
     const auto linear = [](float c) {
         return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
     };
     const glm::vec3 target(linear(srgb.x), linear(srgb.y), linear(srgb.z));
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) count += glm::length(image.at(x, y) - target) < 0.08f;
-    return double(count) / double((x1 - x0) * (y1 - y0));
+    for (int y = r.y0; y < r.y1; ++y)
+        for (int x = r.x0; x < r.x1; ++x) count += glm::length(image.at(x, y) - target) < 0.08f;
+    return double(count) / double(r.area());
 }
 
 TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
@@ -150,23 +255,30 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
                      ("edacrt_viewer_debug_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
+    const auto take = [&](const std::string& name) {
+        return "layout " + (dir / (name + ".json")).string() + "\nscreenshot " + shot(name) + "\n";
+    };
+    const auto image = [&](const std::string& name) {
+        return ShownLayout(dir / (name + ".json")).image();
+    };
     // The teapot: enough triangles for a few levels. The debugger follows the middle pixel of
-    // the image region (at 1280x800: x from 351, y to 480).
+    // the image region.
     std::ofstream(dir / "script.txt")
-        << "wait-spp 1\nscreenshot " << shot("plain") << "\ntab Traversal\n"
-        << "pick 815 240\nwait-analysis\nframes 2\nscreenshot " << shot("debugger")
-        << "\norbit 60 0\nframes 3\nscreenshot " << shot("moved") << "\n";
+        << "wait-spp 1\nwait-settled\n"
+        << take("plain") << "tab Traversal\npick-image 0.5 0.5\nwait-analysis\nwait-settled\n"
+        << take("debugger") << "orbit 60 0\nwait-settled\n"
+        << take("moved");
     const std::string scene = (test::source_dir() / "assets/teapot/teapot.obj").string();
     const auto result = test::run_command(viewer_under_xvfb(
         "--integrator primary --script " + (dir / "script.txt").string() + " " + scene));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const Image plain = read_png(shot("plain")), debugger = read_png(shot("debugger"));
-    // The followed ray's boxes: yellow (255, 230, 60) lines appear over the image.
+    // The followed ray's boxes: yellow (255, 230, 60) lines appear over the image region.
     const glm::vec3 yellow(1.0f, 230.0f / 255.0f, 60.0f / 255.0f);
-    EXPECT_EQ(near_colour(plain, 0, 0, 1280, 800, yellow), 0.0);
-    EXPECT_GT(near_colour(debugger, 0, 0, 1280, 800, yellow), 1e-4);
+    EXPECT_EQ(near_colour(plain, image("plain"), yellow), 0.0);
+    EXPECT_GT(near_colour(debugger, image("debugger"), yellow), 1e-4);
     // The camera moved: the recording is stale and its boxes are no longer drawn.
-    EXPECT_EQ(near_colour(read_png(shot("moved")), 0, 0, 1280, 800, yellow), 0.0);
+    EXPECT_EQ(near_colour(read_png(shot("moved")), image("moved"), yellow), 0.0);
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
@@ -178,7 +290,7 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
     // 200 MB: the window's full resolution (1280x800) does not fit, half of it does. Starting
     // at full resolution is refused; after the refused change the render goes on at half.
     std::ofstream(dir / "script.txt")
-        << "set resolution 0.5\nwait-spp 1\nset resolution 1\nframes 2\nwait-spp 3\nquit\n";
+        << "set resolution 0.5\nwait-spp 1\nset resolution 1\nwait-error\nwait-spp 3\nquit\n";
     const auto result =
         test::run_command("EDACRT_MEMORY_LIMIT=200000000 " +
                           viewer_under_xvfb("--hide-panels --script " +
@@ -194,6 +306,9 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
               std::string::npos)
         << result.output;
     EXPECT_NE(result.output.find(refusal, first + 1), std::string::npos) << "refused twice";
+    EXPECT_NE(result.output.find("error shown: a 1280x800 path render needs about "),
+              std::string::npos)
+        << result.output;
     EXPECT_EQ(result.output.find("640x400 path render needs"), std::string::npos);
 }
 
@@ -201,11 +316,10 @@ TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) 
 test::CliResult run_viewer_script(const std::filesystem::path& dir, const std::string& script,
                                   int width, int height, const std::string& args) {
     std::ofstream(dir / "script.txt") << script;
-    return test::run_command(
-        "ASAN_OPTIONS=detect_leaks=0 xvfb-run -a -s '-screen 0 1920x1080x24' " EDACRT_VIEWER
-        " --width " +
-        std::to_string(width) + " --height " + std::to_string(height) + " --script " +
-        (dir / "script.txt").string() + " " + args);
+    return test::run_command(xvfb_viewer(1920, 1080,
+                                         "--width " + std::to_string(width) + " --height " +
+                                             std::to_string(height) + " --script " +
+                                             (dir / "script.txt").string() + " " + args));
 }
 
 TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
@@ -218,7 +332,7 @@ TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
         R"("look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 0}]}})";
     std::ofstream(dir / "bookmarks.json") << damaged;
     const auto result =
-        run_viewer_script(dir, "frames 2\nquit\n", 1280, 800,
+        run_viewer_script(dir, "wait-loaded\nquit\n", 1280, 800,
                           "--bookmarks " + (dir / "bookmarks.json").string() + " builtin:cornell");
     EXPECT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("[0]: skipped"), std::string::npos) << result.output;
@@ -236,8 +350,8 @@ TEST(ViewerScreenshots, AScriptSavesABookmarkOrFailsAtItsLine) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const test::TempDir dir;
     const std::filesystem::path file = dir.path() / "config" / "bookmarks.json";
-    const auto saved = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
-                                         "--bookmarks " + file.string() + " builtin:cornell");
+    const auto saved = run_viewer_script(dir.path(), "wait-loaded\nbookmark front\nquit\n", 1280,
+                                         800, "--bookmarks " + file.string() + " builtin:cornell");
     ASSERT_EQ(saved.exit_code, 0) << saved.output;
     const auto json = nlohmann::json::parse(std::ifstream(file));
     const auto& list = json["scenes"]["builtin:cornell"];
@@ -247,8 +361,9 @@ TEST(ViewerScreenshots, AScriptSavesABookmarkOrFailsAtItsLine) {
 
     // A bookmarks file under a regular file: its folder cannot be made.
     const std::filesystem::path blocked = dir.write("plain", "") / "bookmarks.json";
-    const auto failed = run_viewer_script(dir.path(), "frames 2\nbookmark front\nquit\n", 1280, 800,
-                                          "--bookmarks " + blocked.string() + " builtin:cornell");
+    const auto failed =
+        run_viewer_script(dir.path(), "wait-loaded\nbookmark front\nquit\n", 1280, 800,
+                          "--bookmarks " + blocked.string() + " builtin:cornell");
     EXPECT_EQ(failed.exit_code, 1) << failed.output;
     EXPECT_NE(failed.output.find("edacrt_viewer: error: script line 2: bookmarks not saved: " +
                                  blocked.string()),
@@ -263,15 +378,17 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
     std::filesystem::create_directories(dir);
     // Every tab of both panels, a recording and a followed pixel (the widest tables), the
     // help overlay, the analysis collapsed; check-layout queries ImGui's windows and counts
-    // table cells narrower than their text, and fails the script on any problem.
-    std::string script = "wait-spp 1\npick 700 200\nwait-analysis\n";
+    // table cells narrower than their text, and fails the script on any problem. Each check
+    // waits until the tab is drawn and its columns have fitted their text (wait-settled).
+    std::string script = "wait-spp 1\npick-image 0.5 0.3\nwait-analysis\n";
     for (const char* tab : {"Scene", "Camera", "Render", "EDACRT"})
-        script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
+        script += std::string("tab ") + tab + "\nwait-settled\ncheck-layout\n";
     for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal", "Frames"})
-        script += std::string("tab ") + tab + "\nframes 3\ncheck-layout\n";
-    script += "set node 1\ntab Recursion\nframes 3\ncheck-layout\n";
+        script += std::string("tab ") + tab + "\nwait-settled\ncheck-layout\n";
+    script += "set node 1\ntab Recursion\nwait-settled\ncheck-layout\n";
     script +=
-        "help on\nframes 3\ncheck-layout\nhelp off\nanalysis closed\nframes 3\ncheck-layout\n";
+        "help on\nwait-settled\ncheck-layout\nhelp off\nanalysis closed\nwait-settled\n"
+        "check-layout\n";
     for (const auto& [width, height] : {std::pair{1024, 640}, std::pair{1600, 900}}) {
         const auto result = run_viewer_script(
             dir, script, width, height,
@@ -298,7 +415,7 @@ TEST(ViewerScreenshots, TheCopiedCommandLineRendersTheViewersImage) {
         "save-linear " +
         (saved / "view.pfm").string() + "\nsave-linear " + (saved / "view.exr").string() +
         "\nsave-view " + (saved / "view.png").string() + "\nwrite-command " +
-        (dir / "command.txt").string() + "\nframes 2\nquit\n";
+        (dir / "command.txt").string() + "\nquit\n";
     const auto viewer = run_viewer_script(
         dir, script, 700, 500,
         "--integrator path " +
@@ -346,7 +463,7 @@ TEST(ViewerScreenshots, AnAnimationShowsItsFramesPlaysAndRoundTripsThroughTheCom
         "set time 0.5\nwait-spp 4\nsave-linear " + file("early.pfm") + "\nwrite-command " +
         file("command.txt") + "\nscreenshot " + file("early.png") +
         "\nset play 1\nwait-played 6\nset play 0\nset time 2.6\nwait-spp 4\nsave-linear " +
-        file("late.pfm") + "\ncompare\nwait-compare\ntab Frames\nframes 3\ncheck-layout\n" +
+        file("late.pfm") + "\ncompare\nwait-compare\ntab Frames\nwait-settled\ncheck-layout\n" +
         "screenshot " + file("late.png") + "\n";
     const auto viewer = run_viewer_script(
         dir, script, 1024, 640,
@@ -390,7 +507,7 @@ TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
     const struct {
         std::string script, message;
     } cases[] = {
-        {"wait-spp 1\nsave-linear " + (in_the_way / "x.pfm").string() + "\nframes 2\nquit\n",
+        {"wait-spp 1\nsave-linear " + (in_the_way / "x.pfm").string() + "\nquit\n",
          "edacrt_viewer: error: script line 2: " + in_the_way.string() + "/x.pfm: "},
         {"set c-i 0\nwait-spp 2\nquit\n",
          "edacrt_viewer: error: script line 2: the render failed: EDACRT parameter c-i (C_I) "
@@ -443,8 +560,8 @@ TEST(ViewerCommandLine, ErrorsQuotingFilesAreEscaped) {
     expect_escaped(test::run_command(EDACRT_VIEWER " '" + scene + "'"), "no\\x1B[2Jscene.obj");
     // A script line that fails while the viewer runs.
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
-    expect_escaped(run_viewer_script(dir.path(), "frames 1\nset method " + esc + "x\nquit\n", 1280,
-                                     800, "builtin:cornell"),
+    expect_escaped(run_viewer_script(dir.path(), "wait-loaded\nset method " + esc + "x\nquit\n",
+                                     1280, 800, "builtin:cornell"),
                    "edacrt_viewer: error: script line 2: ");
 }
 

@@ -60,7 +60,7 @@ void draw_animation_settings(ViewerState& s) {
         ImGui::SliderFloat("shutter s", &p.shutter, 1e-3f, 1.0f, "%.3f",
                            ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     }
-    if (!p.error.empty()) error_text(p.error);
+    if (!p.error.empty()) error_text(s, "Scene/animation error", p.error);
 }
 
 }  // namespace edacrt::app

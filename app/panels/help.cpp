@@ -39,6 +39,8 @@ void draw_help(ViewerState& s) {
         ImGui::EndTable();
     }
     ImGui::TextDisabled("Keys act while no text field has the keyboard.");
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    s.items.push_back({"Help", {pos.x, pos.y, size.x, size.y}});
     ImGui::End();
 }
 

@@ -5,7 +5,9 @@
 
 #include <imgui.h>
 
+#include <bit>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -13,6 +15,7 @@ namespace edacrt::app {
 namespace {
 
 int clipped_cells = 0;
+std::uint64_t cell_widths = 0;  // FNV-1a over the cells' widths
 
 constexpr ImGuiWindowFlags kPinned = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                      ImGuiWindowFlags_NoSavedSettings |
@@ -26,13 +29,18 @@ void pin(const Rect& r) {
 /// Where the window ended up, for the layout check.
 void place(ViewerState& s, const char* name) {
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    s.placements.push_back({name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells()});
+    const std::uint64_t widths = cell_widths;
+    s.placements.push_back({name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells(), widths});
 }
 
 /// A tab; the script's `tab NAME` brings it forward.
 bool tab(ViewerState& s, const char* name) {
     const bool select = std::erase(s.select_tabs, std::string(name)) > 0;
-    return ImGui::BeginTabItem(name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+    const bool open =
+        ImGui::BeginTabItem(name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+    report_item(s, std::string(name) + "/tab");
+    if (open) s.tabs_open.emplace_back(name);
+    return open;
 }
 
 }  // namespace
@@ -45,7 +53,9 @@ void cell_text(const char* format, ...) {
     va_end(args);
     // Columns size to their content from the previous frame: a cell is clipped when its text
     // is wider than what is left of it.
-    if (ImGui::CalcTextSize(text).x > ImGui::GetContentRegionAvail().x + 1.0f) ++clipped_cells;
+    const float width = ImGui::GetContentRegionAvail().x;
+    if (ImGui::CalcTextSize(text).x > width + 1.0f) ++clipped_cells;
+    cell_widths = (cell_widths ^ std::bit_cast<std::uint32_t>(width)) * 1099511628211ull;
     ImGui::TextUnformatted(text);
 }
 
@@ -58,13 +68,23 @@ void wrapped_tooltip(const std::string& text) {
     ImGui::EndTooltip();
 }
 
-void error_text(const std::string& text) {
+void error_text(ViewerState& s, const char* name, const std::string& text) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
     ImGui::TextWrapped("%s", text.c_str());
     ImGui::PopStyleColor();
+    report_item(s, name);
+    s.errors_shown.push_back(text);
 }
 
-int take_clipped_cells() { return std::exchange(clipped_cells, 0); }
+void report_item(ViewerState& s, std::string name) {
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    s.items.push_back({std::move(name), {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y}});
+}
+
+int take_clipped_cells() {
+    cell_widths = 0;
+    return std::exchange(clipped_cells, 0);
+}
 
 void draw_controls(ViewerState& s) {
     if (s.layout.controls.empty()) return;

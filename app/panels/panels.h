@@ -60,8 +60,12 @@ bool enum_combo(const char* label, E& value, const EnumTable<E, N>& table) {
 /// A tooltip for the last item, wrapped at a readable width.
 void wrapped_tooltip(const std::string& text);
 
-/// An error, wrapped, in red.
-void error_text(const std::string& text);
+/// An error, wrapped, in red; reported as the item `name` and as an error shown.
+void error_text(ViewerState& state, const char* name, const std::string& text);
+
+/// Reports where the last item was drawn, as `name` ("Tab/widget"), for the script's
+/// `layout FILE`.
+void report_item(ViewerState& state, std::string name);
 
 /// A table cell's text; counts cells too narrow for it (the layout check reports them).
 void cell_text(const char* format, ...) IM_FMTARGS(1);

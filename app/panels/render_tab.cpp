@@ -40,10 +40,11 @@ void draw_render_tab(ViewerState& s) {
     ImGui::SliderFloat("resolution", &ui.resolution_scale, float(setting_range("resolution").min),
                        float(setting_range("resolution").ui_max), "%.3f x image",
                        ImGuiSliderFlags_AlwaysClamp);
+    report_item(s, "Render/resolution");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("render size as a fraction of the image region's pixels");
     if (!s.resolution_error.empty()) {
-        error_text(s.resolution_error);
+        error_text(s, "Render/resolution error", s.resolution_error);
     }
     ImGui::SliderInt("threads", &ui.threads, int(setting_range("threads").min),
                      int(setting_range("threads").ui_max), ui.threads == 0 ? "all" : "%d",
@@ -83,7 +84,7 @@ void draw_render_tab(ViewerState& s) {
 
     ImGui::Separator();
     if (!s.render_error.empty()) {
-        error_text(s.render_error);
+        error_text(s, "Render/render error", s.render_error);
     } else if (s.frame) {
         const Frame& f = *s.frame;
         const double mrays = f.total.trace_seconds > 0

@@ -250,7 +250,8 @@ TEST(Script, WaitsTimeoutLayoutAndPickImageParse) {
     EXPECT_EQ(commands[3].numbers, std::vector<double>{2.5});
     EXPECT_EQ(commands[4].args, std::vector<std::string>{"out/l.json"});
     EXPECT_EQ(commands[5].numbers, (std::vector<double>{0.5, 1.0}));
-    for (const auto& [script, message] : std::vector<std::pair<std::string, std::string>>{
+    // (A pair, not a structured binding: Clang 14 cannot capture those in a lambda.)
+    for (const auto& c : std::vector<std::pair<std::string, std::string>>{
              {"wait-error now\n", "s:1: 'wait-error' takes 0 argument(s)"},
              {"wait-loaded x\n", "s:1: 'wait-loaded' takes 0 argument(s)"},
              {"quit\nwait-settled 3\n", "s:2: 'wait-settled' takes 0 argument(s)"},
@@ -267,8 +268,8 @@ TEST(Script, WaitsTimeoutLayoutAndPickImageParse) {
              {"pick-image 0 -0.1\n", "s:1: 'pick-image' takes numbers from 0 to 1, got '-0.1'"},
              {"pick-image nan 0\n", "got 'nan'"},
          })
-        EXPECT_NE(error_of([&] { parse_script(script, "s"); }).find(message), std::string::npos)
-            << script << ": " << error_of([&] { parse_script(script, "s"); });
+        EXPECT_NE(error_of([&] { parse_script(c.first, "s"); }).find(c.second), std::string::npos)
+            << c.first << ": " << error_of([&] { parse_script(c.first, "s"); });
 }
 
 // Every wait fails the script at its line once its timeout has passed, naming what it waited

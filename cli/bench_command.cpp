@@ -30,10 +30,14 @@ std::function<void()> add_bench_command(CLI::App& app) {
         ->check(CLI::Range(1, 1024))
         ->capture_default_str();
     command
-        ->add_option("--methods", o.methods,
-                     "methods: " + enum_names(kMethods) +
-                         " (embree: all three modes, the fastest is the ratio base; naive is "
-                         "slow)")
+        ->add_option(
+            "--methods", o.methods,
+            "methods: " + enum_names(kMethods) +
+                " (embree: all three modes, the fastest is the ratio base; naive is "
+                "slow); a method with settings of its own is METHOD:KEY=VALUE[:...], "
+                "e.g. dacrt:presplit=0:second-child=after-first (edacrt, dacrt: the "
+                "EDACRT parameters by their edacrt trace flag names, preset=NAME first; bvh: bins, "
+                "max-leaf, c-t)")
         ->delimiter(',')
         ->capture_default_str();
     command->add_option("--width", o.width, "pixels per row")

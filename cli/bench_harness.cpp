@@ -18,6 +18,7 @@
 
 #include "bench_report.h"
 #include "bench_scenes.h"
+#include "bench_variant.h"
 #include "common_options.h"
 #include "progress.h"
 #include "render/render_memory.h"
@@ -30,7 +31,8 @@
 namespace edacrt::cli {
 namespace {
 
-/// The variants of `names`, each method once. Still, Embree in each of its modes (the fastest
+/// The variants of `names`, each once: a method, or a spec METHOD:KEY=VALUE... with settings
+/// of its own (bench_variant.h). Still, Embree in each of its modes (the fastest
 /// stands for it in the reports). Animated, the BVH and Embree in each of their ways to take a
 /// frame, and EDACRT also without pre-split pieces, whose clipping is most of its per-frame
 /// work on large triangles.
@@ -41,9 +43,18 @@ std::vector<Variant> make_variants(const std::vector<std::string>& names, bool a
         return variants.back();
     };
     for (const std::string& name : names) {
+        if (name.find(':') != std::string::npos) {  // a variant with its own settings
+            if (animated) throw InputError("--methods " + name + ": --dynamic takes methods only");
+            Variant v = parse_variant(name);
+            if (std::none_of(variants.begin(), variants.end(),
+                             [&](const Variant& o) { return o.label == v.label; }))
+                variants.push_back(std::move(v));
+            continue;
+        }
         const Method method = parse_enum_or_throw(kMethods, name);
-        if (std::any_of(variants.begin(), variants.end(),
-                        [&](const Variant& v) { return v.method == method; }))
+        if (std::any_of(variants.begin(), variants.end(), [&](const Variant& v) {
+                return v.label == name || v.label.starts_with(name + "/");
+            }))
             continue;
         if (method == Method::naive)
             std::cerr << "bench: warning: naive tests every ray against every triangle; expect "
@@ -131,7 +142,8 @@ SetRun run_set(const Frames& frames, const std::vector<Variant>& variants, SetRu
     if (animated) {
         frames.animation->frame(0.0, frames.scene);
         for (std::size_t i = 0; i < variants.size(); ++i) {
-            tracers[i] = make_tracer(variants[i].method, variants[i].params, variants[i].mode);
+            tracers[i] = make_tracer(variants[i].method, variants[i].params, variants[i].mode,
+                                     variants[i].bvh);
             tracers[i]->update_scene(frames.scene, variants[i].how);
         }
     }
@@ -147,7 +159,7 @@ SetRun run_set(const Frames& frames, const std::vector<Variant>& variants, SetRu
         for (const std::size_t i : frame_order(variants.size(), f, animated)) {
             const Variant& v = variants[i];
             MethodRun& m = run.methods[i];
-            if (!animated) tracers[i] = make_tracer(v.method, v.params, v.mode);
+            if (!animated) tracers[i] = make_tracer(v.method, v.params, v.mode, v.bvh);
             const UpdateStats update = tracers[i]->update_scene(frames.scene, v.how);
             m.work = update.work;
             m.prepare_seconds.push_back(update.seconds);
@@ -277,9 +289,10 @@ nlohmann::json scene_json(const BenchScene& bench_scene, const AnimatedScene& an
 }
 
 nlohmann::json settings_json(const BenchOptions& o, const std::vector<int>& thread_counts) {
-    nlohmann::json json = {{"width", o.width}, {"height", o.height},
-                           {"spp", o.spp},     {"methods", o.methods},
-                           {"seed", o.seed},   {"edacrt_params", "default preset"}};
+    nlohmann::json json = {
+        {"width", o.width}, {"height", o.height},
+        {"spp", o.spp},     {"methods", o.methods},
+        {"seed", o.seed},   {"edacrt_params", "defaults, or as a method spec sets them"}};
     if (o.dynamic)
         json.update({{"animation", o.animation},
                      {"frames", o.frames},

@@ -21,6 +21,7 @@ struct Variant {
     EmbreeMode mode = kDefaultEmbreeMode;
     SceneUpdate how = SceneUpdate::rebuild;  // still frames: always a new tracer, set_scene()
     EdacrtParams params = {};
+    BvhBuildOptions bvh = {};
 };
 
 /// One variant over the frames of one ray set at one thread count.

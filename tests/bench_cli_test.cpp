@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -77,6 +78,42 @@ TEST_F(BenchCli, EveryMethodAndSetAgree) {
             EXPECT_TRUE(seen.contains({set, method})) << set << " " << method;
     EXPECT_NE(slurp(path("bench.md")).find("| scene | set |"), std::string::npos);
     EXPECT_NE(result.output.find("frame ms"), std::string::npos) << result.output;
+}
+
+// A spec's settings reach its tracer: variants that are the same settings written two ways
+// make the same (deterministic, one thread) counters, and a changed setting changes them.
+TEST_F(BenchCli, VariantsTakeTheirOwnSettings) {
+    const char* variants[] = {"edacrt",
+                              "edacrt:preset=paper",
+                              "edacrt:small-nodes=every-ray:second-child=after-first:presplit=0",
+                              "edacrt:preset=dacrt",
+                              "dacrt",
+                              "edacrt:leaf-tris=2:leaf-rays=2",
+                              "bvh",
+                              "bvh:max-leaf=1:bins=4:c-t=2"};
+    std::string methods;
+    for (const char* v : variants) methods += std::string(methods.empty() ? "" : ",") + v;
+    const auto result = test::run_cli(
+        "bench --scene teapot --sets camera,shadow --spp 1 --width 48 --height 32 --repeat 1 "
+        "--threads 1 --methods " +
+        methods + " --json " + path("variants.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json json = read_json("variants.json");
+    EXPECT_TRUE(json["agreement_ok"].get<bool>());
+    std::map<std::pair<std::string, std::string>, std::pair<double, double>> tests;
+    for (const nlohmann::json& row : json["results"])
+        tests[{row["set"], row["method"]}] = {row["box_tests_per_ray"].get<double>(),
+                                              row["triangle_tests_per_ray"].get<double>()};
+    for (const std::string set : {"camera-1spp", "shadow"}) {
+        for (const char* v : variants) ASSERT_TRUE(tests.contains({set, v})) << set << " " << v;
+        const auto of = [&](const char* v) { return tests.at({set, v}); };
+        EXPECT_EQ(of("edacrt:preset=paper"),
+                  of("edacrt:small-nodes=every-ray:second-child=after-first:presplit=0"));
+        EXPECT_EQ(of("dacrt"), of("edacrt:preset=dacrt"));
+        EXPECT_NE(of("edacrt"), of("edacrt:preset=paper")) << set;
+        EXPECT_LT(of("edacrt:leaf-tris=2:leaf-rays=2").second, of("edacrt").second) << set;
+        EXPECT_NE(of("bvh"), of("bvh:max-leaf=1:bins=4:c-t=2")) << set;
+    }
 }
 
 TEST_F(BenchCli, ThreadSweepReportsScaling) {
@@ -165,6 +202,19 @@ TEST_F(BenchCli, BadParametersFailWithAMessage) {
         {quick + "--write-rays /dev/null/rays", "--write-rays"},
         {quick + "--dynamic --write-rays " + path("rays"), "--write-rays"},
         {"bench --scene cornell --width 16384 --height 16384 --spp 1,4", "choose a smaller"},
+        {quick + "--methods edacrt:bins=1", "bins=1: EDACRT parameter bins: '1' is outside"},
+        {quick + "--methods edacrt:bins", "'bins' is not KEY=VALUE"},
+        {quick + "--methods edacrt:=3", "'=3' is not KEY=VALUE"},
+        {quick + "--methods edacrt:", "'' is not KEY=VALUE"},
+        {quick + "--methods edacrt:bogus=1", "unknown EDACRT parameter 'bogus'"},
+        {quick + "--methods edacrt:presplit=0:preset=paper", "preset must come first"},
+        {quick + "--methods edacrt:preset=bogus", "unknown preset 'bogus'"},
+        {quick + "--methods dacrt:hit-ratio=sampled", "is what makes dacrt DACRT"},
+        {quick + "--methods bvh:max-leaf=0", "max-leaf"},
+        {quick + "--methods bvh:c-t=nan", "c-t"},
+        {quick + "--methods bvh:leaf=3", "unknown bvh option 'leaf'"},
+        {quick + "--methods naive:bins=4", "naive takes no options"},
+        {quick + "--dynamic --methods edacrt:bins=4", "--dynamic takes methods only"},
     };
     for (const Case& c : cases) {
         const auto result = test::run_cli(c.args);

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cassert>
+#include <charconv>
+#include <cmath>
+#include <string>
 
 #include "geometry/binning.h"
+#include "util/error.h"
 
 namespace edacrt {
 namespace {
@@ -166,6 +170,31 @@ class Builder {
 };
 
 }  // namespace
+
+void set_bvh_option(BvhBuildOptions& options, std::string_view key, std::string_view text) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    const bool number =
+        error == std::errc{} && end == text.data() + text.size() && std::isfinite(value);
+    const auto require = [&](bool ok, const char* range) {
+        if (!number || !ok)
+            throw InputError("bvh option " + std::string(key) + ": '" + std::string(text) +
+                             "' must be " + range);
+    };
+    if (key == "bins") {
+        require(value == std::floor(value) && value >= 2 && value <= 256, "an integer in [2, 256]");
+        options.bins = int(value);
+    } else if (key == "max-leaf") {
+        require(value == std::floor(value) && value >= 1 && value <= 1024,
+                "an integer in [1, 1024]");
+        options.max_leaf = std::uint32_t(value);
+    } else if (key == "c-t") {
+        require(value > 0.0 && value <= 1e6, "in (0, 1e6]");
+        options.traversal_cost = float(value);
+    } else {
+        throw InputError("unknown bvh option '" + std::string(key) + "' (bins, max-leaf, c-t)");
+    }
+}
 
 Bvh build_bvh(std::span<const BvhReference> references, const BvhBuildOptions& options) {
     assert(options.bins >= 2 && options.max_leaf >= 1);

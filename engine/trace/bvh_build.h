@@ -3,6 +3,7 @@
 // Volume Hierarchies", 2007) over references: a box and the triangle it stands for.
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "geometry/aabb.h"
@@ -31,6 +32,11 @@ struct BvhBuildOptions {
     float traversal_cost = 1.0f;     // visiting an inner node: its two box tests
     float intersection_cost = 1.0f;  // one ray-triangle test
 };
+
+/// Sets one option from `key=value` text, for variants of the baseline (edacrt bench --methods
+/// bvh:bins=8:max-leaf=4): bins, max-leaf, c-t (traversal_cost; C_I = 1 is the unit). Throws
+/// InputError naming the option and its range.
+void set_bvh_option(BvhBuildOptions& options, std::string_view key, std::string_view text);
 
 struct Bvh {
     std::vector<BvhNode> nodes;        // nodes[0] is the root; depth-first, left child first

@@ -28,7 +28,7 @@ void BvhTracer::set_scene(const Scene& scene) {
     std::vector<BvhReference> references(triangles.size());
     for (std::size_t i = 0; i < triangles.size(); ++i)
         references[i] = {conservative_bounds(triangles[i]), std::uint32_t(i)};
-    Bvh bvh = build_bvh(references);
+    Bvh bvh = build_bvh(references, options_);
     // The builder's temporaries, alive beside the members while the tree is collapsed.
     build_bytes_ = triangles.capacity() * sizeof(Triangle) +
                    references.capacity() * sizeof(BvhReference) +

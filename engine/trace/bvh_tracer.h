@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "trace/bvh_build.h"
 #include "trace/bvh_wide.h"
 #include "trace/tracer.h"
 
@@ -13,6 +14,8 @@ namespace edacrt {
 /// update_scene(refit) keeps the tree and refits its boxes to the triangles' new positions.
 class BvhTracer final : public Tracer {
   public:
+    explicit BvhTracer(const BvhBuildOptions& options = {}) : options_(options) {}
+
     Method method() const override { return Method::bvh; }
     void set_scene(const Scene& scene) override;
     std::size_t working_bytes() const override;
@@ -36,6 +39,7 @@ class BvhTracer final : public Tracer {
     TraceStats trace_all(std::span<const Ray> rays, std::span<Hit> hits,
                          const Observer& observer) const;
 
+    BvhBuildOptions options_;
     std::vector<Bvh8Node> wide_;
     std::vector<std::uint32_t> bvh_prims_;
     std::vector<Triangle> leaf_triangles_;  // the triangle of each reference, in prims order

@@ -16,12 +16,12 @@
 namespace edacrt {
 
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params,
-                                    EmbreeMode embree_mode) {
+                                    EmbreeMode embree_mode, const BvhBuildOptions& bvh_options) {
     switch (method) {
         case Method::naive:
             return std::make_unique<NaiveTracer>();
         case Method::bvh:
-            return std::make_unique<BvhTracer>();
+            return std::make_unique<BvhTracer>(bvh_options);
         case Method::embree:
 #ifdef EDACRT_HAS_EMBREE
             return std::make_unique<EmbreeTracer>(embree_mode);

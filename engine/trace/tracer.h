@@ -10,6 +10,7 @@
 #include "geometry/ray.h"
 #include "geometry/triangle.h"
 #include "scene/scene.h"
+#include "trace/bvh_build.h"
 #include "trace/edacrt_params.h"
 #include "trace/trace_stats.h"
 #include "util/enum_table.h"
@@ -125,10 +126,11 @@ class Tracer {
 };
 
 /// A tracer of the given method. The divide-and-conquer methods take `params` (dacrt through
-/// dacrt_params()), embree takes `embree_mode`; the others ignore them.
+/// dacrt_params()), embree takes `embree_mode`, bvh `bvh_options`; the others ignore them.
 /// Throws InputError for bad params.
 std::unique_ptr<Tracer> make_tracer(Method method, const EdacrtParams& params = {},
-                                    EmbreeMode embree_mode = kDefaultEmbreeMode);
+                                    EmbreeMode embree_mode = kDefaultEmbreeMode,
+                                    const BvhBuildOptions& bvh_options = {});
 
 /// Gathers each triangle's corners in scene order (the per-frame triangle data of the tracers).
 FrameVector<Triangle> gather_triangles(const Scene& scene);

@@ -22,9 +22,10 @@ def revision():
                    else "")
 
 
-def generated_line(command, machine=None, seconds=None):
-    """The sentence every generated section starts with, and its machine-readable marker."""
-    rev = revision()
+def generated_line(command, machine=None, seconds=None, rev=None):
+    """The sentence every generated section starts with, and its machine-readable marker;
+    `rev`: the revision that measured, when the section is remade from stored results."""
+    rev = rev or revision()
     where = [time.strftime("%Y-%m-%d")]
     if machine:
         where.append(f"{machine.get('cpu', '?')}, {machine.get('hardware_threads', '?')} "

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 from bench_common import ROOT, run as run_checked, scene_list
-from readme_section import generated_line, splice
+from readme_section import generated_line, revision, splice
 
 HEADING = "## Each method at its best: the switch sweep"
 run = functools.partial(run_checked, tool="sweep")
@@ -93,12 +93,12 @@ def geomean(values):
     return math.exp(sum(math.log(v) for v in values) / len(values)) if values else float("nan")
 
 
-def markdown(args, rows, machine, seconds, command):
+def markdown(args, rows, machine, seconds, command, rev):
     cells = analyse(rows)
     threads = sorted({r["threads"] for r in rows})
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     lines = [HEADING, "",
-             generated_line(command, machine, seconds),
+             generated_line(command, machine, seconds, rev),
              "",
              f"Each method's switches, one at a time away from its defaults, timed per frame "
              f"(`set_scene()` + `trace()`, medians of {args.repeat} frames interleaved in a "
@@ -187,11 +187,16 @@ def main():
             sys.exit(f"sweep: no results in {args.out}; run without --from-results first")
         scenes = [s for s in scenes if any(args.out.glob(f"{s}-*t.json"))]
     rows, machine = measure(args, scenes)
-    section, worst = markdown(args, rows, machine, time.time() - started, command)
+    meta = args.out / "revision"
+    if not args.from_results:
+        meta.write_text(revision())
+    section, worst = markdown(args, rows, machine, time.time() - started, command,
+                              meta.read_text() if meta.exists() else None)
     (args.out / "sweep.md").write_text(section)
     if not args.quick:
         (ROOT / "bench" / "results" / "sweep.json").write_text(
-            json.dumps({"machine": machine, "size": args.size, "repeat": args.repeat,
+            json.dumps({"machine": machine, "revision": meta.read_text(), "size": args.size,
+                        "repeat": args.repeat,
                         "rows": rows}, indent=0) + "\n")
     if args.readme:
         splice(ROOT / "bench" / "README.md", HEADING, section)

@@ -3,7 +3,7 @@
 //   set KEY VALUE      a UI parameter (method, spp, ...; every EDACRT flag without "--",
 //                      e.g. set filter-skip off; set preset paper); animation: animate SPEC,
 //                      time T, play 0|1, speed X, loop 0|1, update MODE, shutter S,
-//                      play-scale 1|2|4
+//                      play-scale 1|2|4; compare-spp 1|4|16 (camera rays per pixel of `compare`)
 //   view NAME          render | box | triangle | depth | order
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   wait-loaded        until the scenes asked for (set scene) are loaded and the render asked

@@ -1,5 +1,8 @@
 // The viewer's settings as the script and tests drive them: `set KEY VALUE`, and whether a
 // recording still describes the render in progress.
+#include <oneapi/tbb/info.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -43,6 +46,20 @@ double check_setting(std::string_view key, double value) {
                          "from " + number_text(r.min) + " to " + number_text(r.max) + ", got " +
                          number_text(value));
     return value;
+}
+
+std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info) {
+    if (ui.method != Method::edacrt && ui.method != Method::dacrt)
+        return "only the edacrt and dacrt methods use it";
+    const bool dacrt = ui.method == Method::dacrt;
+    if (dacrt && (info.key == "hit-ratio" || info.key == "order" || info.key == "filter-skip"))
+        return "the dacrt method sets it: surface-area hit ratios, direction-sign order, "
+               "filter skipping off";
+    const int cores = tbb::info::default_concurrency();
+    const int threads = ui.threads > 0 ? std::min(ui.threads, cores) : cores;
+    const auto reason =
+        param_no_effect_reason(dacrt ? dacrt_params(ui.params) : ui.params, info, threads);
+    return reason ? std::string(*reason) : std::string();
 }
 
 void apply_setting(ViewerState& s, const std::string& key, const std::string& value) {
@@ -92,7 +109,12 @@ void apply_setting(ViewerState& s, const std::string& key, const std::string& va
         s.exposure = exposure;
     } else if (key == "scene")
         s.pending_loads.push_back(value);
-    else if (key == "level")
+    else if (key == "compare-spp") {
+        const double v = number();
+        if (std::find(std::begin(kCompareSpp), std::end(kCompareSpp), v) == std::end(kCompareSpp))
+            throw InputError("'compare-spp' is 1, 4 or 16, got '" + value + "'");
+        s.compare_spp = int(v);
+    } else if (key == "level")
         s.explorer_level = int(number());
     else if (key == "node")
         s.explorer_node = std::int32_t(number());

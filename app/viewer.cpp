@@ -388,7 +388,8 @@ int run_viewer(const ViewerOptions& options) {
                     }
                 comparison = std::async(std::launch::async, compare_methods, s.scene, previous,
                                         submitted.camera, submitted.settings.width,
-                                        submitted.settings.height, s.ui.params, &worker);
+                                        submitted.settings.height, s.compare_spp,
+                                        submitted.settings.seed, s.ui.params, &worker);
                 s.comparing = true;
             }
             if (comparison.valid() &&

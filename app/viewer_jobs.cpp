@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "render/benchmark_rays.h"
 #include "render/default_camera.h"
 #include "render/render_memory.h"
 #include "render/wavefront.h"
@@ -137,16 +138,37 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
     }
 }
 
-/// Traces one camera ray per pixel with every method (the Statistics tab), once the render
-/// has paused (its pass in flight finished): the median of three update + trace, where the
-/// update is set_scene() (per-frame cost: nothing is kept between frames) or, for a frame of
-/// an animation, also a refit or dynamic commit from the previous frame (untimed).
+std::vector<Ray> compare_rays(const Camera& camera, int width, int height, int spp,
+                              std::uint32_t seed) {
+    const std::uint64_t rays = std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(spp);
+    const std::uint64_t need = rays * trace_bytes_per_ray();
+    const MemoryLimit limit = memory_limit();
+    if (need > limit.bytes / 2)
+        throw InputError(std::to_string(rays) + " rays (" + std::to_string(spp) +
+                         " per pixel) need about " + std::to_string(need / 1'000'000) +
+                         " MB, more than half the " + std::to_string(limit.bytes / 1'000'000) +
+                         " MB of " + limit.source + "; choose fewer rays per pixel");
+    const PinholeProjection projection(camera, width, height);
+    if (spp == 1) return projection.pixel_centre_rays();
+    return jittered_camera_rays(projection, width, height, spp, seed);
+}
+
+/// Traces the camera rays with every method (the Statistics tab), once the render has paused
+/// (its pass in flight finished): the median of three update + trace, where the update is
+/// set_scene() (per-frame cost: nothing is kept between frames) or, for a frame of an
+/// animation, also a refit or dynamic commit from the previous frame (untimed).
 std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
                                           std::shared_ptr<const Scene> previous, Camera camera,
-                                          int width, int height, EdacrtParams params,
-                                          const RenderWorker* worker) {
+                                          int width, int height, int spp, std::uint32_t seed,
+                                          EdacrtParams params, const RenderWorker* worker) {
     worker->wait_idle(std::chrono::seconds(60));
-    const std::vector<Ray> rays = PinholeProjection(camera, width, height).pixel_centre_rays();
+    std::vector<Ray> rays;
+    std::string rays_error;  // every method's row shows it
+    try {
+        rays = compare_rays(camera, width, height, spp, seed);
+    } catch (const InputError& e) {
+        rays_error = e.what();
+    }
     std::vector<Hit> hits(rays.size());
     std::vector<std::pair<Method, SceneUpdate>> variants;
     for (Method method : {Method::edacrt, Method::dacrt, Method::bvh, Method::embree}) {
@@ -162,7 +184,9 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
         MethodTotals totals;
         totals.method = method;
         totals.update = how;
+        totals.spp = spp;
         try {
+            if (!rays_error.empty()) throw InputError(rays_error);
             if (method == Method::naive &&
                 double(rays.size()) * double(scene->triangle_count()) > 1e9)
                 throw InputError("skipped: too slow here");

@@ -30,13 +30,22 @@ RenderRequest make_request(const ViewerState& state, int width, int height);
 /// there is no resolution to render at yet.
 bool fit_resolution(ViewerState& state, RenderRequest& request, const RenderRequest& submitted);
 
-/// Every method on one camera ray per pixel, once `worker` is idle (the caller pauses it):
-/// the median of three update + trace. The update is set_scene(); given the `previous` frame
-/// of an animation, also bvh's refit and embree's dynamic commit and refit from it.
+/// The comparison's camera rays per pixel: one, or the many rays per batch the paper traces.
+inline constexpr int kCompareSpp[] = {1, 4, 16};
+
+/// The camera rays the methods are compared on: the pixel centres at 1 spp, else `spp`
+/// jittered rays per pixel, as `edacrt bench` makes them. Throws InputError when their trace
+/// would take more than half the memory limit (the paused render keeps the rest).
+std::vector<Ray> compare_rays(const Camera& camera, int width, int height, int spp,
+                              std::uint32_t seed);
+
+/// Every method on compare_rays(), once `worker` is idle (the caller pauses it): the median of
+/// three update + trace. The update is set_scene(); given the `previous` frame of an
+/// animation, also bvh's refit and embree's dynamic commit and refit from it.
 std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
                                           std::shared_ptr<const Scene> previous, Camera camera,
-                                          int width, int height, EdacrtParams params,
-                                          const RenderWorker* worker);
+                                          int width, int height, int spp, std::uint32_t seed,
+                                          EdacrtParams params, const RenderWorker* worker);
 
 /// Records the recursion of the request's first-pass camera rays (or a 64x64 crop of them at
 /// the image centre), following one pixel.

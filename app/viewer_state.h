@@ -46,6 +46,7 @@ struct MethodTotals {
     // How the tracer took the frame (an animation: also refit from the previous frame).
     SceneUpdate update = SceneUpdate::rebuild;
     double update_seconds = 0.0;
+    int spp = 1;  // camera rays per pixel
 };
 
 /// A recorded trace of the first pass's camera rays (the batch the statistics and heat maps
@@ -138,6 +139,7 @@ struct ViewerState {
     bool comparing = false;                  // the render pauses meanwhile
     std::vector<std::string> pending_loads;  // from the path field, the list, drops
     bool compare_requested = false;
+    int compare_spp = 1;  // camera rays per pixel of the comparison (kCompareSpp)
 
     // Saving: PNG of the image region as shown (with or without overlays), PFM of the linear
     // render; the name from the scene and the time unless a path is given.
@@ -233,6 +235,11 @@ const SettingRange& setting_range(std::string_view key);
 
 /// Throws InputError naming the setting, its range and `value` when it is out of range.
 double check_setting(std::string_view key, double value);
+
+/// Why the EDACRT parameter cannot change the render under the method, the other parameters
+/// and the threads of `ui` (param_no_effect_reason(), and the choices dacrt makes); empty when
+/// it can.
+std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info);
 
 /// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
 /// exposure, scene, explorer level and node). Throws InputError.

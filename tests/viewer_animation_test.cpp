@@ -292,7 +292,7 @@ TEST(CompareMethods, AnAnimationFrameAlsoComparesRefitAndDynamicUpdates) {
     RenderWorker idle;
     const auto scene = pool->at(0.5);
     const auto rows =
-        compare_methods(scene, pool->at(0.45), *scene->camera, 24, 16, EdacrtParams{}, &idle);
+        compare_methods(scene, pool->at(0.45), *scene->camera, 24, 16, 1, 0, EdacrtParams{}, &idle);
     std::vector<std::pair<Method, SceneUpdate>> seen;
     for (const MethodTotals& m : rows) {
         seen.emplace_back(m.method, m.update);
@@ -313,8 +313,9 @@ TEST(CompareMethods, AnAnimationFrameAlsoComparesRefitAndDynamicUpdates) {
                                  std::pair(Method::edacrt, SceneUpdate::rebuild)})
         EXPECT_NE(std::find(seen.begin(), seen.end(), expected), seen.end());
     // A still scene: one row per method.
-    EXPECT_EQ(compare_methods(scene, nullptr, *scene->camera, 8, 8, EdacrtParams{}, &idle).size(),
-              5u);
+    EXPECT_EQ(
+        compare_methods(scene, nullptr, *scene->camera, 8, 8, 1, 0, EdacrtParams{}, &idle).size(),
+        5u);
 }
 
 TEST(CommandLine, AnAnimatedViewNamesItsAnimationTimeAndShutter) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -12,6 +14,7 @@
 #include "enum_table_checks.h"
 #include "heatmap.h"
 #include "orbit_camera.h"
+#include "render/benchmark_rays.h"
 #include "render_worker.h"
 #include "scene/builtin_scenes.h"
 #include "script.h"
@@ -481,6 +484,71 @@ TEST(Script, BookmarkSavesTheViewToTheBookmarksFile) {
 
 }  // namespace
 // The script's view names (view NAME) are the table's; the heat map tab shows their help.
+// The comparison's rays: the pixel centres at 1 spp, else the jittered sets of `edacrt bench`,
+// all in one batch; refused with the figures when they cannot fit.
+TEST(CompareMethods, ManyRaysPerPixelAreBenchsJitteredCameraRays) {
+    const auto scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    const Camera camera = *scene->camera;
+    const PinholeProjection projection(camera, 12, 8);
+    const auto same = [](const std::vector<Ray>& a, const std::vector<Ray>& b) {
+        return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Ray)) == 0;
+    };
+    EXPECT_TRUE(same(compare_rays(camera, 12, 8, 1, 3), projection.pixel_centre_rays()));
+    for (const int spp : {4, 16}) {
+        const std::vector<Ray> rays = compare_rays(camera, 12, 8, spp, 3);
+        EXPECT_EQ(rays.size(), std::size_t(12 * 8 * spp));
+        EXPECT_TRUE(same(rays, jittered_camera_rays(projection, 12, 8, spp, 3)));
+        EXPECT_FALSE(same(rays, compare_rays(camera, 12, 8, spp, 4))) << "another seed";
+    }
+    RenderWorker idle;
+    for (const MethodTotals& m :
+         compare_methods(scene, nullptr, camera, 12, 8, 4, 0, EdacrtParams{}, &idle)) {
+        EXPECT_EQ(m.error, "") << enum_name(kMethods, m.method);
+        EXPECT_EQ(m.spp, 4);
+        EXPECT_EQ(m.stats.rays, 12u * 8u * 4u);
+    }
+    ::setenv("EDACRT_MEMORY_LIMIT", "100000", 1);
+    EXPECT_THROW(compare_rays(camera, 100, 100, 16, 0), InputError);
+    const auto refused = compare_methods(scene, nullptr, camera, 100, 100, 16, 0, {}, &idle);
+    ::unsetenv("EDACRT_MEMORY_LIMIT");
+    ASSERT_FALSE(refused.empty());
+    for (const MethodTotals& m : refused)
+        EXPECT_NE(m.error.find("160000 rays (16 per pixel) need about"), std::string::npos)
+            << m.error;
+    ViewerState s;
+    EXPECT_EQ(run_script(s, "set compare-spp 16\n"), "");
+    EXPECT_EQ(s.compare_spp, 16);
+    EXPECT_NE(run_script(s, "set compare-spp 3\n").find("'compare-spp' is 1, 4 or 16, got '3'"),
+              std::string::npos);
+    EXPECT_EQ(s.compare_spp, 16);
+}
+
+// The EDACRT panel greys what cannot change the render: param_no_effect_reason() for the
+// method's parameters, everything for a method without them, dacrt's own choices for dacrt.
+TEST(ParamsPanel, InertParametersFollowMethodSwitchesAndThreads) {
+    const auto inert = [](const UiSettings& ui, const char* key) {
+        return !param_inert_reason(ui, *find_param(key)).empty();
+    };
+    UiSettings ui;
+    ui.threads = 2;
+    EXPECT_TRUE(inert(ui, "c-t"));
+    EXPECT_TRUE(inert(ui, "c-child"));
+    EXPECT_FALSE(inert(ui, "c-i"));
+    EXPECT_FALSE(inert(ui, "second-child"));
+    EXPECT_FALSE(inert(ui, "hit-ratio"));
+    ui.threads = 1;
+    EXPECT_TRUE(inert(ui, "second-child"));
+    ui.params.cost_leaf_max_tris = 64;
+    EXPECT_FALSE(inert(ui, "c-t"));
+    ui.method = Method::dacrt;
+    for (const char* key : {"hit-ratio", "order", "filter-skip", "sample-count", "c-bv"})
+        EXPECT_TRUE(inert(ui, key)) << key;
+    EXPECT_FALSE(inert(ui, "bins"));
+    ui.method = Method::bvh;
+    for (const ParamInfo& info : edacrt_param_info())
+        EXPECT_NE(param_inert_reason(ui, info), "") << info.key;
+}
+
 TEST(ViewNames, RoundTripAndRefuseUnknownNames) {
     test::expect_enum_table(kViews);
     EXPECT_EQ(parse_enum_or_throw(kViews, "box"), View::box_tests);

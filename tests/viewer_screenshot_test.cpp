@@ -282,6 +282,46 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
     if (!HasFailure()) std::filesystem::remove_all(dir);
 }
 
+// The EDACRT panel with the defaults greys C_T (no cost leaf) and C_child (filter skipping by
+// the paper's rule); a cost leaf above leaf-tris brings C_T back. The same widget, at the same
+// value, is compared in both frames: only its greying differs.
+TEST(ViewerScreenshots, AParameterWithoutEffectIsGreyed) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("edacrt_viewer_params_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const auto shot = [&](const std::string& name) { return (dir / (name + ".png")).string(); };
+    const auto take = [&](const std::string& name) {
+        return "layout " + (dir / (name + ".json")).string() + "\nscreenshot " + shot(name) + "\n";
+    };
+    std::ofstream(dir / "script.txt")
+        << "wait-loaded\ntab EDACRT\nwait-settled\n"
+        << take("defaults") << "set cost-leaf-max-tris 64\nwait-settled\n"
+        << take("cost_leaf");
+    const std::string scene =
+        (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string();
+    const auto result = test::run_command(
+        viewer_under_xvfb("--script " + (dir / "script.txt").string() + " " + scene));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const ShownLayout before(dir / "defaults.json"), after(dir / "cost_leaf.json");
+    const Image greyed = read_png(shot("defaults")), live = read_png(shot("cost_leaf"));
+    // Brightness of a widget (frame, slider grab, label): greyed, ImGui draws it at 60% alpha.
+    const auto shown = [](const Image& image, const Region& r) {
+        const glm::vec3 c = mean(image, r);
+        return c.x + c.y + c.z;
+    };
+    const float c_t_greyed = shown(greyed, before.item("EDACRT/c-t"));
+    const float c_t_live = shown(live, after.item("EDACRT/c-t"));
+    EXPECT_LT(c_t_greyed, 0.8f * c_t_live) << c_t_greyed << " " << c_t_live;
+    // C_child stays greyed, C_I live, in both frames.
+    for (const auto& [image, layout] : {std::pair(&greyed, &before), std::pair(&live, &after)}) {
+        const float c_i = shown(*image, layout->item("EDACRT/c-i"));
+        EXPECT_LT(shown(*image, layout->item("EDACRT/c-child")), 0.8f * c_i);
+        EXPECT_NEAR(c_i, c_t_live, 0.2f * c_t_live) << "live sliders look alike";
+    }
+    if (!HasFailure()) std::filesystem::remove_all(dir);
+}
+
 TEST(ViewerScreenshots, AResolutionThatCannotFitIsRefusedAndThePreviousOneKept) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const auto dir = std::filesystem::temp_directory_path() /

@@ -1,5 +1,6 @@
 // EDACRT parameters: a widget with a tooltip for every parameter, generated from their
-// descriptions (engine/trace/edacrt_params.h); any change re-renders (the viewer compares the
+// descriptions (engine/trace/edacrt_params.h), greyed when the method and the other parameters
+// leave it no effect (the tooltip says why); any change re-renders (the viewer compares the
 // settings each frame).
 #include <imgui.h>
 
@@ -11,10 +12,12 @@
 namespace edacrt::app {
 namespace {
 
-void tooltip(const ParamInfo& info) {
-    if (!ImGui::IsItemHovered()) return;
+void tooltip(const ParamInfo& info, const std::string& inert) {
+    if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
     ImGui::BeginTooltip();
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    if (!inert.empty())
+        ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "no effect now: %s", inert.c_str());
     ImGui::TextUnformatted(info.help.data(), info.help.data() + info.help.size());
     if (info.kind != ParamInfo::Kind::choice)
         ImGui::TextDisabled("range %g to %g", info.min, info.max);
@@ -23,7 +26,10 @@ void tooltip(const ParamInfo& info) {
     ImGui::EndTooltip();
 }
 
-void widget(EdacrtParams& p, const ParamInfo& info) {
+void widget(ViewerState& s, const ParamInfo& info) {
+    EdacrtParams& p = s.ui.params;
+    const std::string inert = param_inert_reason(s.ui, info);
+    ImGui::BeginDisabled(!inert.empty());
     const std::string label(info.label);
     const double value = info.get(p);
     switch (info.kind) {
@@ -54,7 +60,9 @@ void widget(EdacrtParams& p, const ParamInfo& info) {
             break;
         }
     }
-    tooltip(info);
+    ImGui::EndDisabled();
+    report_item(s, "EDACRT/" + std::string(info.key));
+    tooltip(info, inert);
 }
 
 }  // namespace
@@ -74,7 +82,7 @@ void draw_params_tab(ViewerState& s) {
     for (const ParamInfo& info : edacrt_param_info())
         label = std::max(label, ImGui::CalcTextSize(std::string(info.label).c_str()).x);
     ImGui::PushItemWidth(-label - ImGui::GetStyle().ItemSpacing.x);
-    for (const ParamInfo& info : edacrt_param_info()) widget(p, info);
+    for (const ParamInfo& info : edacrt_param_info()) widget(s, info);
     ImGui::PopItemWidth();
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "panels.h"
 #include "util/hash_random.h"
@@ -19,8 +20,13 @@ unsigned node_colour(std::size_t node, float alpha = 1.0f) {
 }
 
 void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams& params) {
-    ImGui::Text("node %d: %u rays, %u triangles, split along %c; leaf cost %.1f", s.explorer_node,
-                node.rays, node.triangles, "xyz"[std::max(node.axis, 0)], node.leaf_cost);
+    ImGui::Text("node %d: %u rays, %u triangles, split along %c", s.explorer_node, node.rays,
+                node.triangles, "xyz"[std::max(node.axis, 0)]);
+    // A leaf's cost decides only where the cost-leaf test looks at the node.
+    if (cost_leaf_tested(params, node.triangles)) {
+        ImGui::SameLine(0.0f, 0.0f);
+        ImGui::Text("; leaf cost %.1f", node.leaf_cost);
+    }
     s.hovered_candidate = -1;
     const float height = float(node.candidates.size() + 1) * ImGui::GetTextLineHeightWithSpacing() +
                          2.0f * ImGui::GetStyle().CellPadding.y * float(node.candidates.size() + 1);
@@ -72,6 +78,17 @@ void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams
             sides[side], sampled, node.alpha_true[side], text,
             node.filter_skipped[side] ? "passed unfiltered" : "filtered");
     }
+}
+
+/// Which part of its parent's split second child a node is, if any.
+const char* second_part(const std::vector<NodeRecord>& nodes, std::int32_t node) {
+    const NodeRecord& parent = nodes[std::size_t(nodes[std::size_t(node)].parent)];
+    if (parent.second_early < 0) return "";
+    if (parent.second_early == node)
+        return "(second child, early part: the rays that missed the first child's box)";
+    if (parent.children[parent.left_first ? 1 : 0] == node)
+        return "(second child, late part: the rays that reached the first child's box)";
+    return "";
 }
 
 /// Step-through: the nodes in the order the recursion entered them (near child first); the
@@ -206,13 +223,29 @@ void draw_recursion_tab(ViewerState& s) {
             draw_box_overlay(s, *a, c.left, IM_COL32(80, 230, 120, 255), 2.0f);
             draw_box_overlay(s, *a, c.right, IM_COL32(255, 150, 40, 255), 2.0f);
         }
-        if (node.parent >= 0 && ImGui::Button("parent")) s.explorer_node = node.parent;
+        if (node.parent >= 0) {
+            if (ImGui::Button("parent")) s.explorer_node = node.parent;
+            ImGui::SameLine();
+            ImGui::TextDisabled("%s", second_part(nodes, s.explorer_node));
+        }
+        // A split second child: children[] holds its part entered after the first child.
+        const int second_side = node.left_first ? 1 : 0;
         for (int side : {0, 1})
             if (node.children[side] >= 0) {
                 ImGui::SameLine();
-                if (ImGui::Button(side == 0 ? "left child" : "right child"))
+                const bool late = node.second_early >= 0 && side == second_side;
+                if (ImGui::Button(side == 0 ? (late ? "left child, late part" : "left child")
+                                            : (late ? "right child, late part" : "right child")))
                     s.explorer_node = node.children[side];
             }
+        if (node.second_early >= 0) {
+            ImGui::SameLine();
+            if (ImGui::Button("second child, early part")) s.explorer_node = node.second_early;
+            wrapped_tooltip(
+                "second-child split: the rays that missed the first child's box went to the "
+                "second child at once, beside the first child (this part); the rest once the "
+                "first child was done (the late part)");
+        }
         if (s.explorer_node >= 0) s.explorer_level = nodes[std::size_t(s.explorer_node)].depth;
     }
 }

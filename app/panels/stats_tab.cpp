@@ -4,9 +4,11 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "panels.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
@@ -40,17 +42,31 @@ void level_charts(const std::vector<LevelStats>& levels) {
 
 }  // namespace
 
-/// Every method on the view's pixel-centre camera rays, the render paused meanwhile.
+/// Every method on the view's camera rays (pixel centres, or jittered rays per pixel), the
+/// render paused meanwhile.
 void draw_comparison(ViewerState& s) {
     ImGui::Separator();
     if (ImGui::Button(s.comparing ? "comparing..." : "compare methods") && !s.comparing)
         s.compare_requested = true;
     ImGui::SameLine();
-    ImGui::TextDisabled(
-        s.playback.frames ? "this frame's camera rays (1 per pixel), every method and update, "
-                            "median of 3 (render paused)"
-                          : "one camera ray per pixel, every method, median of 3 (render paused)");
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("16 spp").x + ImGui::GetFrameHeight() * 2.0f);
+    if (ImGui::BeginCombo("##compare spp", (std::to_string(s.compare_spp) + " spp").c_str())) {
+        for (const int spp : kCompareSpp)
+            if (ImGui::Selectable((std::to_string(spp) + " spp").c_str(), spp == s.compare_spp))
+                s.compare_spp = spp;
+        ImGui::EndCombo();
+    }
+    wrapped_tooltip(
+        "camera rays per pixel, one batch: 1, the pixel centres; more, jittered rays as `edacrt "
+        "bench` makes them (the paper traces many rays per batch, where sampling pays more)");
+    ImGui::SameLine();
+    ImGui::TextDisabled(s.playback.frames
+                            ? "this frame's camera rays, every method and update, median of 3 "
+                              "(render paused)"
+                            : "the view's camera rays, every method, median of 3 (render paused)");
     if (s.comparison.empty()) return;
+    ImGui::TextDisabled("measured on %d camera ray%s per pixel", s.comparison.front().spp,
+                        s.comparison.front().spp == 1 ? "" : "s");
     if (s.playback.frames)
         ImGui::TextDisabled(
             "measured at t = %.3f s; refit and dynamic start from the frame 1/24 s before",
@@ -130,15 +146,24 @@ void draw_stats_tab(ViewerState& s) {
                                       ImGuiTableFlags_SizingFixedFit;
         // Order: of the rays that hit both children's boxes and found their hit below, the
         // share whose hit was in the child visited first. alpha: estimated / true hit ratio.
-        const char* headers[] = {"level",      "nodes",      "leaves",     "rays in",
-                                 "rays down",  "filtered",   "skipped",    "tris",
-                                 "sample box", "filter box", "tri tests",  "order 1st",
-                                 "culled",     "alpha est",  "alpha true", "ms"};
+        const char* headers[] = {"level",      "nodes",     "leaves",    "rays in", "rays down",
+                                 "filtered",   "skipped",   "2nd split", "tris",    "sample box",
+                                 "filter box", "tri tests", "order 1st", "culled",  "alpha est",
+                                 "alpha true", "ms"};
         const float rows = float(levels.size() + 3) * ImGui::GetTextLineHeightWithSpacing();
-        if (ImGui::BeginTable("levels", 16, flags, ImVec2(0, std::min(rows, 220.0f)))) {
+        if (ImGui::BeginTable("levels", 17, flags, ImVec2(0, std::min(rows, 220.0f)))) {
             for (const char* h : headers) ImGui::TableSetupColumn(h);
             ImGui::TableSetupScrollFreeze(1, 1);
-            ImGui::TableHeadersRow();
+            ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+            for (const char* h : headers) {
+                ImGui::TableNextColumn();
+                ImGui::TableHeader(h);
+                if (h == headers[7])
+                    wrapped_tooltip(
+                        "nodes whose second child got its rays in two parts (second-child "
+                        "split): at once, the rays that missed the first child's box; after "
+                        "it, the rest. Each is one more child ray set (filtered or skipped)");
+            }
             const auto count = [](std::uint64_t v) {
                 ImGui::TableNextColumn();
                 cell_text("%llu", static_cast<unsigned long long>(v));
@@ -152,9 +177,9 @@ void draw_stats_tab(ViewerState& s) {
             ImGui::TableSetColumnIndex(3);
             cell_text("%llu", static_cast<unsigned long long>(root.rays));
             count(root.entered);
-            ImGui::TableSetColumnIndex(9);
+            ImGui::TableSetColumnIndex(10);
             cell_text("%llu", static_cast<unsigned long long>(root.box_tests));
-            ImGui::TableSetColumnIndex(15);
+            ImGui::TableSetColumnIndex(16);
             cell_text("%.2f", root.seconds * 1e3);
             LevelStats total;
             for (std::size_t i = 0; i <= levels.size(); ++i) {
@@ -164,9 +189,10 @@ void draw_stats_tab(ViewerState& s) {
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
                 is_total ? cell_text("total") : cell_text("%zu", i);
-                for (std::uint64_t v : {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
-                                        l.filters_skipped, l.triangles, l.sample_box_tests,
-                                        l.filter_box_tests, l.ray_triangle_tests})
+                for (std::uint64_t v :
+                     {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
+                      l.filters_skipped, l.second_splits, l.triangles, l.sample_box_tests,
+                      l.filter_box_tests, l.ray_triangle_tests})
                     count(v);
                 ImGui::TableNextColumn();
                 const std::uint64_t ordered = l.order_hits + l.order_misses;

@@ -265,7 +265,8 @@ std::string param_text(const EdacrtParams& p, const ParamInfo& info) {
 }
 
 float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles) {
-    if (p.filter_skip == FilterSkip::off) return 2.0f;
+    // Never skip when filtering is off, or costs nothing (C_bv = 0).
+    if (p.filter_skip == FilterSkip::off || p.cost_filter == 0.0f) return 2.0f;
     // Filtering costs C_bv for every ray; passing a ray unfiltered costs, if it misses the
     // child (1 - alpha of the rays), what the child then spends on it, n_child C_child. Skip
     // when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv / (n_child C_child).
@@ -278,6 +279,56 @@ float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles
                          : child_triangles <= p.leaf_tris       ? n * p.cost_intersect
                                                                 : 2.0f * p.cost_filter;
     return 1.0f - p.cost_filter / wasted;
+}
+
+bool cost_leaf_tested(const EdacrtParams& p, std::uint32_t triangles) {
+    return p.cost_leaf_max_tris > 0 && triangles <= p.cost_leaf_max_tris;
+}
+
+std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, const ParamInfo& info,
+                                                       int threads) {
+    const std::string_view key = info.key;
+    // Nodes sample rays only for a sampled hit ratio or order, and only nodes of more than
+    // leaf_rays rays and leaf_tris triangles choose a split at all.
+    const bool sampling = p.hit_ratio == HitRatio::sampled || p.order == TraversalOrder::sampled;
+    const std::uint64_t fewest_sampled = std::uint64_t(p.leaf_rays) + 1;
+    // Small nodes that draw sample_count rays whatever their size, as large ones do.
+    const bool small_as_large =
+        (p.small_nodes == SmallNodes::capped && p.sample_count < fewest_sampled) ||
+        (p.small_nodes == SmallNodes::scaled &&
+         std::uint64_t(p.sample_count) * kScaledSampleShare <= fewest_sampled);
+    const bool cost_leaf = p.cost_leaf_max_tris > p.leaf_tris;
+    const bool free_filter = p.cost_filter == 0.0f;
+
+    if ((key == "sample-threshold" || key == "sample-count" || key == "small-nodes" ||
+         key == "sampling-seed") &&
+        !sampling)
+        return "neither the hit ratio nor the traversal order is sampled: no node samples rays";
+    if (key == "sample-threshold" && small_as_large)
+        return "every node that samples (more than leaf-rays rays) draws sample-count rays "
+               "under this small-node policy, small or large";
+    if (key == "small-nodes" && p.sample_threshold <= p.leaf_rays)
+        return "no node that samples is small: nodes of at most sample-threshold rays are "
+               "leaves (leaf-rays)";
+    if (key == "second-child" && threads <= 1)
+        return "on one thread the second child's rays all wait for the first child (split "
+               "needs a second thread for its task)";
+    // Every candidate pays the same C_T and its tests are all priced by C_I, so the cheapest
+    // split is the one of fewest expected tests; the costs decide only against a leaf.
+    if (key == "c-t" && !cost_leaf)
+        return "C_T is the same for every candidate split, so it only decides against a leaf "
+               "(cost C_I N): set cost-leaf max tris above leaf triangles";
+    if (key == "c-i" && !cost_leaf && (p.filter_skip != FilterSkip::paper || free_filter))
+        return "C_I prices every candidate split alike, so it only decides against a leaf "
+               "(cost-leaf max tris above leaf triangles) and in filter-skip=paper's threshold "
+               "for a leaf child";
+    if (key == "c-bv" && p.filter_skip == FilterSkip::off)
+        return "filter skipping is off: every child's rays are filtered";
+    if (key == "c-child" && p.filter_skip != FilterSkip::triangles)
+        return "only filter-skip=triangles prices a child by C_child";
+    if ((key == "c-child" || key == "filter-skip") && free_filter)
+        return "C_bv is 0: filtering costs nothing, so it is never skipped";
+    return std::nullopt;
 }
 
 }  // namespace edacrt

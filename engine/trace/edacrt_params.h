@@ -3,6 +3,7 @@
 // flags, the viewer's widgets and tooltips, the viewer's script keys and the range checks are
 // all generated from edacrt_param_info().
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -123,6 +124,10 @@ void validate(const EdacrtParams& params);
 /// 1, with FilterSkip::off); the child holds `child_triangles` triangles.
 float filter_skip_threshold(const EdacrtParams& params, std::uint32_t child_triangles);
 
+/// Whether a node of `triangles` triangles becomes a leaf when no split costs less than C_I N
+/// (cost_leaf_max_tris; 0 turns the test off).
+bool cost_leaf_tested(const EdacrtParams& params, std::uint32_t triangles);
+
 /// One parameter, described once.
 struct ParamInfo {
     enum class Kind { integer, real, choice };
@@ -148,5 +153,11 @@ void set_param(EdacrtParams& params, const ParamInfo& info, std::string_view tex
 
 /// The parameter's value as set_param() reads it.
 std::string param_text(const EdacrtParams& params, const ParamInfo& info);
+
+/// Why `info` cannot change the hits or the counters of a trace, whatever its value, under the
+/// other parameters of `params` on `threads` worker threads; nothing when it may. (It may still
+/// change the costs the recursion explorer shows.)
+std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& params,
+                                                       const ParamInfo& info, int threads);
 
 }  // namespace edacrt

@@ -269,13 +269,12 @@ class Recursion {
         const bool sampled_alpha = sampled && p_.hit_ratio == HitRatio::sampled;
         const float box_area = node.box.surface_area();
         // C(V -> {V_L, V_R}) = C_T + C_I (alpha_L N_L + alpha_R N_R), per ray of the node;
-        // a leaf costs C_I N.
-        float best_cost = node.tri_count <= p_.cost_leaf_max_tris
-                              ? p_.cost_intersect * float(node.tri_count)
-                              : kInfinity;
+        // a leaf costs C_I N. Every candidate pays the same C_T and C_I per test, so the
+        // cheapest is the one of fewest expected tests, compared as such so that C_T and C_I
+        // decide only against the leaf (param_no_effect_reason() relies on it).
+        float best_key = kInfinity, best_cost = kInfinity;
         // Deep nodes: the most balanced candidate instead of the cheapest (kBalancedDepth).
         const bool balance = node.depth >= kBalancedDepth;
-        if (balance) best_cost = kInfinity;
         int best = -1;
         for (int j = 0; j < p_.bins - 1; ++j) {
             const BinSplit& s = sc.splits[j];
@@ -294,13 +293,15 @@ class Recursion {
                 c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
                 c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
             }
-            c.cost = p_.cost_traversal + p_.cost_intersect * (c.alpha_left * c.left_triangles +
-                                                              c.alpha_right * c.right_triangles);
+            const float tests =
+                c.alpha_left * float(c.left_triangles) + c.alpha_right * float(c.right_triangles);
+            c.cost = p_.cost_traversal + p_.cost_intersect * tests;
             obs_.candidate(visit, c);
             const float key =
-                balance ? std::abs(float(c.left_triangles) - float(c.right_triangles)) : c.cost;
-            if (key < best_cost) {
-                best_cost = key;
+                balance ? std::abs(float(c.left_triangles) - float(c.right_triangles)) : tests;
+            if (key < best_key) {
+                best_key = key;
+                best_cost = c.cost;
                 best = j;
                 split.count[0] = c.left_triangles;
                 split.count[1] = c.right_triangles;
@@ -308,7 +309,9 @@ class Recursion {
                 split.alpha[1] = c.alpha_right;
             }
         }
-        if (best < 0) return false;
+        if (best < 0 || (!balance && cost_leaf_tested(p_, std::uint32_t(node.tri_count)) &&
+                         !(best_cost < p_.cost_intersect * float(node.tri_count))))
+            return false;
         split.last_left_bin = best;
         split.box[0] = sc.splits[best].left;
         split.box[1] = sc.splits[best].right;

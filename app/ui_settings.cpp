@@ -52,7 +52,7 @@ std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info) {
     if (ui.method != Method::edacrt && ui.method != Method::dacrt)
         return "only the edacrt and dacrt methods use it";
     const bool dacrt = ui.method == Method::dacrt;
-    if (dacrt && (info.key == "hit-ratio" || info.key == "order" || info.key == "filter-skip"))
+    if (dacrt && dacrt_sets(info.key))
         return "the dacrt method sets it: surface-area hit ratios, direction-sign order, "
                "filter skipping off";
     const int cores = tbb::info::default_concurrency();

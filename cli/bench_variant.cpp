@@ -1,15 +1,11 @@
 #include "bench_variant.h"
 
-#include <array>
 #include <string>
 
 #include "util/error.h"
 
 namespace edacrt::cli {
 namespace {
-
-/// What dacrt_params() sets: a dacrt variant cannot change it.
-constexpr std::array<std::string_view, 3> kDacrtIdentity = {"hit-ratio", "order", "filter-skip"};
 
 Variant parse_settings(std::string_view spec) {
     const std::size_t colon = spec.find(':');
@@ -34,12 +30,11 @@ Variant parse_settings(std::string_view spec) {
             if (!first) throw InputError("preset must come first (it sets every parameter)");
             v.params = preset_params(value);
         } else if (const ParamInfo* info = find_param(key)) {
-            for (std::string_view fixed : kDacrtIdentity)
-                if (v.method == Method::dacrt && key == fixed)
-                    throw InputError(std::string(key) +
-                                     " is what makes dacrt DACRT; vary it with "
-                                     "edacrt:preset=dacrt:" +
-                                     std::string(key) + "=...");
+            if (v.method == Method::dacrt && dacrt_sets(key))
+                throw InputError(std::string(key) +
+                                 " is what makes dacrt DACRT; vary it with "
+                                 "edacrt:preset=dacrt:" +
+                                 std::string(key) + "=...");
             set_param(v.params, *info, value);
         } else {
             throw InputError("unknown EDACRT parameter '" + std::string(key) + "'");

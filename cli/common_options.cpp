@@ -73,9 +73,16 @@ void add_common_options(CLI::App& command, CommonOptions& options) {
     command.parse_complete_callback([&options] {
         try {
             options.edacrt = preset_params(options.preset);
-            for (std::size_t i = 0; i < options.param_values.size(); ++i)
-                if (!options.param_values[i].empty())
-                    set_param(options.edacrt, edacrt_param_info()[i], options.param_values[i]);
+            for (std::size_t i = 0; i < options.param_values.size(); ++i) {
+                if (options.param_values[i].empty()) continue;
+                const ParamInfo& info = edacrt_param_info()[i];
+                if (options.method == Method::dacrt && dacrt_sets(info.key))
+                    throw InputError("--" + std::string(info.key) +
+                                     " is what makes dacrt DACRT; vary it with --method edacrt "
+                                     "--preset dacrt --" +
+                                     std::string(info.key) + " ...");
+                set_param(options.edacrt, info, options.param_values[i]);
+            }
             validate(options.edacrt);
         } catch (const InputError& e) {
             throw CLI::ValidationError(e.what());

@@ -205,6 +205,10 @@ EdacrtParams dacrt_params(EdacrtParams params) {
     return params;
 }
 
+bool dacrt_sets(std::string_view key) {
+    return key == "hit-ratio" || key == "order" || key == "filter-skip";
+}
+
 EdacrtParams preset_params(std::string_view name) {
     if (name == kPresets[0]) return EdacrtParams{};
     if (name == kPresets[1]) return paper_params();

@@ -113,6 +113,9 @@ EdacrtParams paper_params();
 /// filtering. Other fields are taken from `params`.
 EdacrtParams dacrt_params(EdacrtParams params = {});
 
+/// The parameters dacrt_params() sets (by key), which the dacrt method cannot take.
+bool dacrt_sets(std::string_view key);
+
 /// The named presets: "default", "paper", "dacrt"; throws InputError for another name.
 EdacrtParams preset_params(std::string_view name);
 std::span<const std::string_view> preset_names();

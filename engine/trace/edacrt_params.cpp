@@ -1,5 +1,6 @@
 #include "trace/edacrt_params.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -73,7 +74,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 18> kParams = {
+const std::array<ParamInfo, 19> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -107,7 +108,14 @@ const std::array<ParamInfo, 18> kParams = {
         "rays (exact, 2(K-1) box tests each), capped draws at most sample-count as large nodes "
         "do, surface-area uses area ratios and the direction-sign order, scaled draws one ray "
         "in 16 (at least one, at most sample-count), so sampling costs about half what filtering "
-        "the node's rays into both children costs."),
+        "the node's rays into both children costs; scaled-min draws as scaled but at least "
+        "sample-min rays, and tests every ray of a node that has no more."),
+    integer<&EdacrtParams::sample_min>(
+        "sample-min", "min samples",
+        "small-nodes=scaled-min: the fewest rays a small node estimates alpha from (scaled "
+        "draws a single ray for a node of 16-31 rays, and its alpha is then 0 or 1). A node of "
+        "at most this many rays tests every ray.",
+        1, 1e6),
     choice<&EdacrtParams::order, kTraversalOrders>(
         "order", "traversal order",
         "Which child is visited first, so its hits cull the rays of the second (Section 3.3). "
@@ -262,6 +270,32 @@ std::string param_text(const EdacrtParams& p, const ParamInfo& info) {
     out.precision(9);
     out << value;
     return out.str();
+}
+
+NodeSampling node_sampling(const EdacrtParams& p, std::size_t rays) {
+    if (rays > p.sample_threshold) return {p.sample_count, false};
+    const auto all = std::uint32_t(rays);  // at most sample_threshold
+    switch (p.small_nodes) {
+        case SmallNodes::every_ray:
+            return {all, true};
+        case SmallNodes::capped:
+            return rays > p.sample_count ? NodeSampling{p.sample_count, false}
+                                         : NodeSampling{all, true};
+        case SmallNodes::surface_area:
+            return {0, false};
+        case SmallNodes::scaled:
+            return {std::uint32_t(
+                        std::clamp<std::size_t>(rays / kScaledSampleShare, 1, p.sample_count)),
+                    false};
+        case SmallNodes::scaled_min: {
+            // A node of at most count rays tests each once (drawing would repeat some).
+            const std::size_t count = std::max<std::size_t>(
+                p.sample_min, std::min<std::size_t>(rays / kScaledSampleShare, p.sample_count));
+            return count >= rays ? NodeSampling{all, true}
+                                 : NodeSampling{std::uint32_t(count), false};
+        }
+    }
+    return {all, true};
 }
 
 float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles) {

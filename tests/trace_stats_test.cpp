@@ -237,10 +237,11 @@ TEST(TraceStats, RecordedNodesAndAFollowedRayDescribeTheRecursion) {
             EXPECT_GE(c.cost, n.candidates[std::size_t(n.chosen)].cost);
         const CandidateSplit& chosen = n.candidates[std::size_t(n.chosen)];
         EXPECT_EQ(chosen.left_triangles + chosen.right_triangles, n.triangles);
-        // The defaults sample every split node: one ray in 16 below 1000 rays, else 100.
+        // The defaults sample every split node, as node_sampling() says.
+        const NodeSampling sampling = node_sampling(EdacrtParams{}, n.rays);
         EXPECT_EQ(n.alpha_source,
-                  n.samples == n.rays ? AlphaSource::every_ray : AlphaSource::sampled);
-        EXPECT_EQ(n.samples, n.rays > 1000 ? 100 : std::max(n.rays / 16, 1u));
+                  sampling.every_ray ? AlphaSource::every_ray : AlphaSource::sampled);
+        EXPECT_EQ(n.samples, sampling.count);
         samples[n.depth] += n.samples;
         sampled[n.depth] += n.samples > 0;
         LevelStats& e = errors[n.depth];

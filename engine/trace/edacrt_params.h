@@ -88,8 +88,8 @@ struct EdacrtParams {
     int bins = 8;  // K
     std::uint32_t sample_threshold = 1000;
     std::uint32_t sample_count = 100;
-    SmallNodes small_nodes = SmallNodes::scaled;
-    std::uint32_t sample_min = 32;  // SmallNodes::scaled_min
+    SmallNodes small_nodes = SmallNodes::scaled_min;
+    std::uint32_t sample_min = 16;  // SmallNodes::scaled_min
     std::uint32_t leaf_rays = 16;
     std::uint32_t leaf_tris = 16;
     std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)

@@ -37,6 +37,8 @@ VARIANTS = [
      "nodes of <= 1000 rays sample every ray"),
     ("small nodes: surface area", ["--small-nodes", "surface-area"],
      "(not the paper) area ratios in nodes of <= 1000 rays"),
+    ("small nodes: scaled", ["--small-nodes", "scaled"],
+     "(not the paper) one ray in 16, at least one, in nodes of <= 1000 rays"),
     ("binning: centroids", ["--binning", "centroids"],
      "(not the paper) bins across the centroids' range"),
     ("cost leaf <= 64 tris", ["--cost-leaf-max-tris", "64"],

@@ -1,8 +1,30 @@
 #include "stats_json.h"
 
 #include <algorithm>
+#include <iterator>
+#include <vector>
 
 namespace edacrt::cli {
+
+namespace {
+
+/// The per-node alpha errors of a level's (or all levels') split children: quantiles, and
+/// the counts per bin up to the last that is not empty.
+nlohmann::json alpha_errors(const LevelStats& l) {
+    const auto* bins = std::begin(l.alpha_error_bins);
+    const auto* last = std::find_if(std::rbegin(l.alpha_error_bins), std::rend(l.alpha_error_bins),
+                                    [](std::uint64_t n) { return n > 0; })
+                           .base();
+    return {{"children", l.alpha_children},
+            {"mean", l.alpha_children ? l.alpha_error_sum / double(l.alpha_children) : 0.0},
+            {"p50", l.alpha_error_quantile(0.5)},
+            {"p90", l.alpha_error_quantile(0.9)},
+            {"max", l.alpha_error_max},
+            {"bin_width", kAlphaErrorBinWidth},
+            {"bins", std::vector<std::uint64_t>(bins, last)}};
+}
+
+}  // namespace
 
 nlohmann::json to_json(const TraceDetail& detail) {
     nlohmann::json levels = nlohmann::json::array();
@@ -11,6 +33,11 @@ nlohmann::json to_json(const TraceDetail& detail) {
         const auto mean = [&](double sum) {
             return l.alpha_children ? sum / double(l.alpha_children) : 0.0;
         };
+        const double samples_per_node =
+            l.sampled_nodes ? double(l.sampled_rays) / double(l.sampled_nodes) : 0.0;
+        nlohmann::json sources;
+        for (const auto& source : kAlphaSources)
+            sources[std::string(source.name)] = l.alpha_sources[int(source.value)];
         levels.push_back({{"level", d},
                           {"nodes", l.nodes},
                           {"leaves", l.leaves},
@@ -25,6 +52,8 @@ nlohmann::json to_json(const TraceDetail& detail) {
                           {"filter_box_tests", l.filter_box_tests},
                           {"ray_triangle_tests", l.ray_triangle_tests},
                           {"sampled_rays", l.sampled_rays},
+                          {"sampled_nodes", l.sampled_nodes},
+                          {"samples_per_node_mean", samples_per_node},
                           {"candidate_splits", l.candidate_splits},
                           {"order_hits", l.order_hits},
                           {"order_misses", l.order_misses},
@@ -33,6 +62,8 @@ nlohmann::json to_json(const TraceDetail& detail) {
                           {"alpha_estimated_mean", mean(l.alpha_estimated_sum)},
                           {"alpha_true_mean", mean(l.alpha_true_sum)},
                           {"alpha_error_mean", mean(l.alpha_error_sum)},
+                          {"alpha_error", alpha_errors(l)},
+                          {"alpha_sources", sources},
                           {"seconds_sampling", l.phase_seconds[0]},
                           {"seconds_binning", l.phase_seconds[1]},
                           {"seconds_filtering", l.phase_seconds[2]},
@@ -51,12 +82,15 @@ nlohmann::json to_json(const TraceDetail& detail) {
     }
     const double n = std::max<double>(1.0, double(detail.rays.size()));
     const RootStats& root = detail.root;
+    LevelStats all;
+    for (const LevelStats& l : detail.levels) all += l;
     return {{"root",
              {{"rays", root.rays},
               {"entered", root.entered},
               {"box_tests", root.box_tests},
               {"seconds", root.seconds}}},
             {"levels", levels},
+            {"alpha_error", alpha_errors(all)},
             {"per_ray",
              {{"rays", detail.rays.size()},
               {"ray_box_tests_mean", box_sum / n},

@@ -223,11 +223,13 @@ TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
         {SmallNodes::capped, 1000, 30},                        // at most sample_count
         {SmallNodes::surface_area, 1000, 0},                   // no sampling at all
         {SmallNodes::scaled, 1000, 100 / kScaledSampleShare},  // one in kScaledSampleShare
+        {SmallNodes::scaled_min, 1000, 8},                     // at least sample_min = 8
         // Above the threshold every policy draws sample_count rays.
         {SmallNodes::every_ray, 50, 30},
         {SmallNodes::capped, 50, 30},
         {SmallNodes::surface_area, 50, 30},
         {SmallNodes::scaled, 50, 30},
+        {SmallNodes::scaled_min, 50, 30},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(int(c.policy)) + " threshold " + std::to_string(c.threshold));
@@ -235,11 +237,19 @@ TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
         p.small_nodes = c.policy;
         p.sample_threshold = c.threshold;
         p.sample_count = 30;
+        p.sample_min = 8;
         const TraceDetail detail = trace_root(scene, rays, p);
         ASSERT_FALSE(detail.levels.empty());
         EXPECT_EQ(detail.levels[0].sampled_rays, c.sampled);
+        EXPECT_EQ(detail.levels[0].sampled_nodes, c.sampled > 0 ? 1u : 0u);
         EXPECT_EQ(detail.levels[0].sample_box_tests, c.sampled * tests_per_ray);
         const NodeRecord& node = root(detail);
+        EXPECT_EQ(node.samples, c.sampled);
+        const AlphaSource source = c.sampled == 0     ? AlphaSource::area
+                                   : c.sampled == 100 ? AlphaSource::every_ray
+                                                      : AlphaSource::sampled;
+        EXPECT_EQ(node.alpha_source, source);
+        EXPECT_EQ(detail.levels[0].alpha_sources[int(source)], 1u);
         const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
         if (c.sampled == 0) {  // surface-area ratios
             EXPECT_FLOAT_EQ(chosen.alpha_left,
@@ -248,6 +258,40 @@ TEST(EdacrtDecisions, SmallNodesSampleByTheirPolicy) {
             EXPECT_FLOAT_EQ(chosen.alpha_left, 0.6f);
         }
     }
+}
+
+TEST(EdacrtDecisions, ScaledMinSamplesAtLeastItsMinimumOrEveryRay) {
+    EdacrtParams p;
+    p.small_nodes = SmallNodes::scaled_min;
+    p.sample_min = 32;
+    p.sample_threshold = 1000;
+    p.sample_count = 100;
+    struct Case {
+        std::size_t rays;
+        std::uint32_t count;
+        bool every_ray;
+    };
+    const Case cases[] = {
+        {17, 17, true},     {32, 32, true},     // no more rays than the minimum: every one
+        {33, 32, false},    {511, 32, false},   // one in 16 would be fewer: the minimum
+        {512, 32, false},   {1000, 62, false},  // one in 16
+        {1001, 100, false},                     // above the threshold: sample_count
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.rays);
+        const NodeSampling s = node_sampling(p, c.rays);
+        EXPECT_EQ(s.count, c.count);
+        EXPECT_EQ(s.every_ray, c.every_ray);
+    }
+    // scaled draws a single ray for 17-31 rays; the other policies as before.
+    p.small_nodes = SmallNodes::scaled;
+    EXPECT_EQ(node_sampling(p, 17).count, 1u);
+    EXPECT_EQ(node_sampling(p, 1000).count, 62u);
+    p.small_nodes = SmallNodes::capped;
+    EXPECT_FALSE(node_sampling(p, 500).every_ray);
+    EXPECT_TRUE(node_sampling(p, 100).every_ray);
+    p.small_nodes = SmallNodes::surface_area;
+    EXPECT_EQ(node_sampling(p, 500).count, 0u);
 }
 
 TEST(EdacrtDecisions, SampledAlphaIsTheTrueAlphaWhenEveryRayIsSampled) {
@@ -421,7 +465,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
 
 TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
     EdacrtParams p;
-    EXPECT_EQ(edacrt_param_info().size(), 18u);
+    EXPECT_EQ(edacrt_param_info().size(), 19u);
     for (const ParamInfo& info : edacrt_param_info()) {
         SCOPED_TRACE(std::string(info.key));
         EXPECT_EQ(find_param(info.key), &info);

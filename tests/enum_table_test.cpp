@@ -59,6 +59,7 @@ TEST(EnumTable, EveryTableRoundTripsAndRefusesUnknownNames) {
     test::expect_enum_table(kSmallNodes);
     test::expect_enum_table(kBinnings);
     test::expect_enum_table(kSecondChildren);
+    test::expect_enum_table(kAlphaSources);
     test::expect_enum_table(cli::kRaySetKinds);
 }
 

@@ -93,6 +93,34 @@ TEST_F(TraceCli, StatsFileIsWritten) {
         level_triangle_tests += level["ray_triangle_tests"].get<std::uint64_t>();
     EXPECT_EQ(level_triangle_tests, stats["ray_triangle_tests"].get<std::uint64_t>());
     EXPECT_GT(stats["detail"]["levels"].size(), 0u);
+    // Per level, the distribution of the split children's alpha errors; over all levels, the
+    // same distribution summed.
+    std::uint64_t children = 0;
+    double error_sum = 0.0;
+    for (const auto& level : stats["detail"]["levels"]) {
+        const auto& errors = level["alpha_error"];
+        const auto n = errors["children"].get<std::uint64_t>();
+        EXPECT_EQ(n, level["alpha_children"].get<std::uint64_t>());
+        std::uint64_t binned = 0;
+        for (const auto& bin : errors["bins"]) binned += bin.get<std::uint64_t>();
+        EXPECT_EQ(binned, n);
+        EXPECT_DOUBLE_EQ(errors["mean"].get<double>(), level["alpha_error_mean"].get<double>());
+        EXPECT_LE(errors["p50"].get<double>(), errors["p90"].get<double>());
+        EXPECT_LE(errors["p90"].get<double>(), errors["max"].get<double>());
+        EXPECT_LE(errors["mean"].get<double>(), errors["max"].get<double>());
+        std::uint64_t sources = 0;
+        for (const auto& source : level["alpha_sources"]) sources += source.get<std::uint64_t>();
+        EXPECT_EQ(2 * sources, n);
+        EXPECT_NEAR(
+            level["samples_per_node_mean"].get<double>() * level["sampled_nodes"].get<double>(),
+            level["sampled_rays"].get<double>(), 1e-6);
+        children += n;
+        error_sum += errors["mean"].get<double>() * double(n);
+    }
+    const auto& all = stats["detail"]["alpha_error"];
+    EXPECT_GT(children, 0u);
+    EXPECT_EQ(all["children"].get<std::uint64_t>(), children);
+    EXPECT_NEAR(all["mean"].get<double>(), error_sum / double(children), 1e-9);
 }
 
 TEST_F(TraceCli, CameraRaysAreTheEnginesAndFeedTrace) {

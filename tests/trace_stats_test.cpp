@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <iterator>
 #include <random>
 
 #include "scene/builtin_scenes.h"
@@ -63,6 +65,14 @@ void expect_consistent(Tracer& tracer, const Scene& scene, Query query, const st
         EXPECT_EQ(level.ray_box_tests, level.sample_box_tests + level.filter_box_tests);
         EXPECT_LE(level.culled_by_distance, level.filter_box_tests);
         EXPECT_EQ(level.alpha_children, 2 * (level.nodes - level.leaves));
+        std::uint64_t binned = 0, sources = 0;
+        for (const std::uint64_t n : level.alpha_error_bins) binned += n;
+        for (const std::uint64_t n : level.alpha_sources) sources += n;
+        EXPECT_EQ(binned, level.alpha_children);
+        EXPECT_EQ(2 * sources, level.alpha_children);
+        EXPECT_LE(level.alpha_error_quantile(0.5), level.alpha_error_quantile(0.9));
+        EXPECT_LE(level.alpha_error_quantile(0.9), level.alpha_error_max);
+        EXPECT_LE(level.alpha_error_sum, level.alpha_error_max * double(level.alpha_children));
         const std::uint64_t inner = level.nodes - level.leaves;
         // Two child ray sets per inner node, three where the second child was split.
         EXPECT_LE(level.second_splits, inner);
@@ -205,6 +215,8 @@ TEST(TraceStats, RecordedNodesAndAFollowedRayDescribeTheRecursion) {
     // keeps all K - 1 candidates and chose the cheapest.
     ASSERT_FALSE(detail.nodes.empty());
     std::vector<std::uint64_t> rays_in(detail.levels.size()), nodes(detail.levels.size());
+    std::vector<std::uint64_t> samples(detail.levels.size()), sampled(detail.levels.size());
+    std::vector<LevelStats> errors(detail.levels.size());  // rebuilt from the records
     for (std::size_t i = 0; i < detail.nodes.size(); ++i) {
         const NodeRecord& n = detail.nodes[i];
         ASSERT_LT(n.depth, detail.levels.size());
@@ -225,10 +237,33 @@ TEST(TraceStats, RecordedNodesAndAFollowedRayDescribeTheRecursion) {
             EXPECT_GE(c.cost, n.candidates[std::size_t(n.chosen)].cost);
         const CandidateSplit& chosen = n.candidates[std::size_t(n.chosen)];
         EXPECT_EQ(chosen.left_triangles + chosen.right_triangles, n.triangles);
+        // The defaults sample every split node, as node_sampling() says.
+        const NodeSampling sampling = node_sampling(EdacrtParams{}, n.rays);
+        EXPECT_EQ(n.alpha_source,
+                  sampling.every_ray ? AlphaSource::every_ray : AlphaSource::sampled);
+        EXPECT_EQ(n.samples, sampling.count);
+        samples[n.depth] += n.samples;
+        sampled[n.depth] += n.samples > 0;
+        LevelStats& e = errors[n.depth];
+        for (const double error : {n.alpha_error(0), n.alpha_error(1)}) {
+            ++e.alpha_children;
+            e.alpha_error_sum += error;
+            e.add_alpha_error(error);
+        }
     }
     for (std::size_t d = 0; d < detail.levels.size(); ++d) {
-        EXPECT_EQ(rays_in[d], detail.levels[d].rays_in) << "level " << d;
-        EXPECT_EQ(nodes[d], detail.levels[d].nodes) << "level " << d;
+        const LevelStats& level = detail.levels[d];
+        EXPECT_EQ(rays_in[d], level.rays_in) << "level " << d;
+        EXPECT_EQ(nodes[d], level.nodes) << "level " << d;
+        EXPECT_EQ(samples[d], level.sampled_rays) << "level " << d;
+        EXPECT_EQ(sampled[d], level.sampled_nodes) << "level " << d;
+        // The level's alpha error distribution is that of its recorded nodes' children.
+        EXPECT_EQ(errors[d].alpha_children, level.alpha_children) << "level " << d;
+        EXPECT_NEAR(errors[d].alpha_error_sum, level.alpha_error_sum, 1e-9) << "level " << d;
+        EXPECT_EQ(errors[d].alpha_error_max, level.alpha_error_max) << "level " << d;
+        EXPECT_TRUE(std::equal(std::begin(level.alpha_error_bins), std::end(level.alpha_error_bins),
+                               std::begin(errors[d].alpha_error_bins)))
+            << "level " << d;
     }
 
     // The followed ray: from the root down, depth first; it reaches the leaf of its hit.
@@ -250,6 +285,49 @@ TEST(TraceStats, RecordedNodesAndAFollowedRayDescribeTheRecursion) {
     std::uint16_t deepest = 0;
     for (const RayVisit& v : detail.follow) deepest = std::max(deepest, v.depth);
     EXPECT_EQ(deepest, detail.rays[followed].deepest_level);
+}
+
+/// scaled decides a node of 16-31 rays from a single ray (alpha 0 or 1); scaled-min tests
+/// every ray of a node of at most sample_min rays (alpha exact) and draws at least sample_min
+/// from larger ones, so its per-node alpha errors are much smaller.
+TEST(TraceStats, ScaledMinAlphaErrorIsWellBelowScaled) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
+    const std::vector<Ray> rays =
+        PinholeProjection(scene.camera.value_or(frame_box(scene.bounds())), 160, 120)
+            .pixel_centre_rays();
+    // The mean alpha error of the split nodes of at most `most` rays.
+    const auto error = [&](SmallNodes policy, std::uint32_t most) {
+        EdacrtParams p;
+        p.small_nodes = policy;
+        p.sample_min = 32;
+        EdacrtTracer tracer(p);
+        tracer.set_scene(scene);
+        std::vector<Hit> hits(rays.size());
+        TraceDetail detail;
+        detail.max_nodes = 1'000'000;
+        tracer.trace(rays, hits, Query::closest, &detail);
+        double sum = 0.0;
+        int children = 0;
+        for (const NodeRecord& n : detail.nodes) {
+            if (n.leaf || n.rays > most) continue;
+            if (policy == SmallNodes::scaled_min) {
+                EXPECT_EQ(n.alpha_source,
+                          n.rays <= 32 ? AlphaSource::every_ray : AlphaSource::sampled);
+                EXPECT_GE(n.samples, std::min(n.rays, 32u));
+                if (n.rays <= 32) {
+                    EXPECT_LT(std::max(n.alpha_error(0), n.alpha_error(1)), 1e-6);
+                }
+            }
+            sum += n.alpha_error(0) + n.alpha_error(1);
+            children += 2;
+        }
+        EXPECT_GT(children, 100);
+        return sum / children;
+    };
+    for (const std::uint32_t most : {31u, 100u, 1000u}) {
+        SCOPED_TRACE(most);
+        EXPECT_LT(error(SmallNodes::scaled_min, most), 0.25 * error(SmallNodes::scaled, most));
+    }
 }
 
 }  // namespace

@@ -128,7 +128,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TracerAgreement, ::testing::ValuesIn(kSceneName
                          });
 
 /// Every combination of EDACRT's switches (hit ratio, order, filter skipping, small-node
-/// policy, binning): 108 recursions, each exact, half of them with the second child split and
+/// policy, binning): 180 recursions, each exact, half of them with the second child split and
 /// half after the first, and a third each with 0, 0.5 and 1 extra triangle pieces per triangle,
 /// alternating. Small leaves make the recursion deep.
 class AblationSwitches : public ::testing::TestWithParam<const char*> {};
@@ -140,7 +140,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
     for (int hit_ratio = 0; hit_ratio < 2; ++hit_ratio)
         for (int order = 0; order < 3; ++order)
             for (int skip = 0; skip < 3; ++skip)
-                for (int small = 0; small < 4; ++small)
+                for (int small = 0; small < int(kSmallNodes.size()); ++small)
                     for (int binning = 0; binning < 2; ++binning) {
                         EdacrtParams p;
                         p.hit_ratio = HitRatio(hit_ratio);
@@ -166,7 +166,7 @@ TEST_P(AblationSwitches, EveryCombinationMatchesNaive) {
                         if (HasFatalFailure()) return;
                         ++combinations;
                     }
-    EXPECT_EQ(combinations, 144);
+    EXPECT_EQ(combinations, 2 * 3 * 3 * int(kSmallNodes.size()) * 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, AblationSwitches,

@@ -140,7 +140,7 @@ TEST(RenderWorker, SurvivesAThousandRandomParameterChanges) {
         request.params.bins = 2 + int(rng() % 30);
         request.params.sample_count = 1 + rng() % 200;
         request.params.filter_skip = FilterSkip(rng() % 3);
-        request.params.small_nodes = SmallNodes(rng() % 4);
+        request.params.small_nodes = SmallNodes(rng() % kSmallNodes.size());
         request.settings.width = 8 + int(rng() % 24);
         worker.set_paused(rng() % 10 == 0);
         id = worker.submit(request);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "panels.h"
@@ -19,9 +20,18 @@ unsigned node_colour(std::size_t node, float alpha = 1.0f) {
     return ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, alpha));
 }
 
+/// Where a split node's alpha came from: "sampled (6 rays)", "area", "every ray (24 rays)".
+std::string alpha_source(const NodeRecord& node) {
+    std::string text(enum_name(kAlphaSources, node.alpha_source));
+    if (node.alpha_source != AlphaSource::area)
+        text += " (" + std::to_string(node.samples) + " rays)";
+    return text;
+}
+
 void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams& params) {
-    ImGui::Text("node %d: %u rays, %u triangles, split along %c", s.explorer_node, node.rays,
-                node.triangles, "xyz"[std::max(node.axis, 0)]);
+    ImGui::Text("node %d: %u rays, %u triangles, split along %c; alpha %s", s.explorer_node,
+                node.rays, node.triangles, "xyz"[std::max(node.axis, 0)],
+                alpha_source(node).c_str());
     // A leaf's cost decides only where the cost-leaf test looks at the node.
     if (cost_leaf_tested(params, node.triangles)) {
         ImGui::SameLine(0.0f, 0.0f);
@@ -66,17 +76,18 @@ void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams
     const CandidateSplit& c = node.candidates[std::size_t(node.chosen)];
     ImGui::Text("%s child first", node.left_first ? "left" : "right");
     const char* sides[] = {"left", "right"};
+    const std::string source = alpha_source(node);
     for (int side : {0, 1}) {
-        const float sampled = side == 0 ? c.alpha_left : c.alpha_right;
+        const float estimated = side == 0 ? c.alpha_left : c.alpha_right;
         const std::uint32_t n = side == 0 ? c.left_triangles : c.right_triangles;
         const float threshold = filter_skip_threshold(params, n);
         char text[48] = "never (filter skipping off)";
         if (threshold <= 1.0f) std::snprintf(text, sizeof text, "%.3f", threshold);
         ImGui::TextWrapped(
-            "%s: a sampled %.3f, true %.3f; skip above 1 - C_bv/(n_child C_child) "
+            "%s: alpha %s %.3f, true %.3f, error %.3f; skip above 1 - C_bv/(n_child C_child) "
             "= %s: %s",
-            sides[side], sampled, node.alpha_true[side], text,
-            node.filter_skipped[side] ? "passed unfiltered" : "filtered");
+            sides[side], source.c_str(), estimated, node.alpha_true[side], node.alpha_error(side),
+            text, node.filter_skipped[side] ? "passed unfiltered" : "filtered");
     }
 }
 
@@ -162,11 +173,14 @@ void draw_recursion_tab(ViewerState& s) {
 
     // The level's nodes: boxes over the image, and a list to pick one from.
     std::size_t shown = 0;
-    if (ImGui::BeginTable("nodes", 5,
+    if (ImGui::BeginTable("nodes", 7,
                           ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, 130))) {
-        for (const char* h : {"node", "rays", "tris", "kind", "filter"}) ImGui::TableSetupColumn(h);
+        // alpha: its source and sample count; error: the larger |estimated - true| of the two
+        // chosen children.
+        for (const char* h : {"node", "rays", "tris", "kind", "filter", "alpha", "error"})
+            ImGui::TableSetupColumn(h);
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableHeadersRow();
         for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -189,9 +203,13 @@ void draw_recursion_tab(ViewerState& s) {
             ImGui::TableNextColumn();
             cell_text("%s", n.leaf ? "leaf" : n.left_first ? "split, L first" : "split, R first");
             ImGui::TableNextColumn();
-            if (!n.leaf)
-                cell_text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
-                          n.filter_skipped[1] ? "skip" : "filt");
+            if (n.leaf) continue;
+            cell_text("%s/%s", n.filter_skipped[0] ? "skip" : "filt",
+                      n.filter_skipped[1] ? "skip" : "filt");
+            ImGui::TableNextColumn();
+            cell_text("%s", alpha_source(n).c_str());
+            ImGui::TableNextColumn();
+            cell_text("%.3f", std::max(n.alpha_error(0), n.alpha_error(1)));
         }
         ImGui::EndTable();
     }

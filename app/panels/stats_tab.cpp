@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,55 @@ void level_charts(const std::vector<LevelStats>& levels) {
     bars("filter box tests", levels, width,
          [](const LevelStats& l) { return double(l.filter_box_tests); });
     bars("ms", levels, width, [](const LevelStats& l) { return l.seconds() * 1e3; });
+}
+
+/// Per level, how far each split child's estimated alpha is from the share of the node's rays
+/// that hit it: the level means in the table above hide single nodes far off. Click a row for
+/// its histogram.
+void alpha_errors(const std::vector<LevelStats>& levels) {
+    int& selected = *ImGui::GetStateStorage()->GetIntRef(ImGui::GetID("alpha error level"));
+    ImGui::TextDisabled("alpha error |estimated - true| per split child; nodes by alpha source:");
+    const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
+    const float rows = float(levels.size() + 2) * ImGui::GetTextLineHeightWithSpacing();
+    if (ImGui::BeginTable("alpha errors", 9, flags, ImVec2(0, std::min(rows, 160.0f)))) {
+        for (const char* h :
+             {"level", "sampled", "area", "every ray", "samples/node", "mean", "p50", "p90", "max"})
+            ImGui::TableSetupColumn(h);
+        ImGui::TableSetupScrollFreeze(1, 1);
+        ImGui::TableHeadersRow();
+        for (std::size_t i = 0; i < levels.size(); ++i) {
+            const LevelStats& l = levels[i];
+            if (l.alpha_children == 0) continue;
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            if (ImGui::Selectable(std::to_string(i).c_str(), selected == int(i),
+                                  ImGuiSelectableFlags_SpanAllColumns))
+                selected = int(i);
+            for (const std::uint64_t n : l.alpha_sources) {
+                ImGui::TableNextColumn();
+                cell_text("%llu", static_cast<unsigned long long>(n));
+            }
+            ImGui::TableNextColumn();
+            cell_text("%.1f",
+                      double(l.sampled_rays) / double(std::max<std::uint64_t>(l.sampled_nodes, 1)));
+            for (const double e :
+                 {l.alpha_error_sum / double(l.alpha_children), l.alpha_error_quantile(0.5),
+                  l.alpha_error_quantile(0.9), l.alpha_error_max}) {
+                ImGui::TableNextColumn();
+                cell_text("%.3f", e);
+            }
+        }
+        ImGui::EndTable();
+    }
+    if (selected >= int(levels.size())) return;
+    const LevelStats& l = levels[std::size_t(selected)];
+    float counts[kAlphaErrorBins];
+    std::copy(std::begin(l.alpha_error_bins), std::end(l.alpha_error_bins), counts);
+    const std::string label =
+        "level " + std::to_string(selected) + ": children per 0.01 of error, 0 to 1";
+    ImGui::PlotHistogram("##alpha error histogram", counts, kAlphaErrorBins, 0, label.c_str(), 0.0f,
+                         FLT_MAX, ImVec2(std::min(ImGui::GetContentRegionAvail().x, 600.0f), 56));
 }
 
 }  // namespace
@@ -210,6 +260,7 @@ void draw_stats_tab(ViewerState& s) {
             ImGui::EndTable();
         }
         level_charts(levels);
+        alpha_errors(levels);
     }
 
     draw_comparison(s);

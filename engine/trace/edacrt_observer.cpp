@@ -105,6 +105,7 @@ RecordingObserver::Visit RecordingObserver::enter(const Node& node) {
 
 void RecordingObserver::sampled(const Node& node, std::uint32_t samples, std::uint64_t tests) {
     LevelStats& stats = level(node.depth);
+    ++stats.sampled_nodes;
     stats.sampled_rays += samples;
     stats.sample_box_tests += tests;
     stats.ray_box_tests += tests;
@@ -135,8 +136,11 @@ void RecordingObserver::split(Visit& visit, const Node& node, const Split& split
         ++stats.alpha_children;
         stats.alpha_estimated_sum += split.alpha[side];
         stats.alpha_true_sum += alpha_true[side];
-        stats.alpha_error_sum += std::abs(double(split.alpha[side]) - alpha_true[side]);
+        const double error = std::abs(double(split.alpha[side]) - alpha_true[side]);
+        stats.alpha_error_sum += error;
+        stats.add_alpha_error(error);
     }
+    ++stats.alpha_sources[int(split.alpha_source)];
     if (visit.node >= 0) {
         NodeRecord& record = detail_.nodes[std::size_t(visit.node)];
         record.leaf = false;
@@ -145,6 +149,8 @@ void RecordingObserver::split(Visit& visit, const Node& node, const Split& split
         record.left_first = split.first == 0;
         record.alpha_true[0] = alpha_true[0];
         record.alpha_true[1] = alpha_true[1];
+        record.alpha_source = split.alpha_source;
+        record.samples = split.samples;
     }
     if (visit.followed >= 0)
         detail_.follow[std::size_t(visit.followed)].first_side_right = split.first == 1;

@@ -1,5 +1,6 @@
 #include "trace/edacrt_params.h"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -73,7 +74,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 18> kParams = {
+const std::array<ParamInfo, 19> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -107,7 +108,14 @@ const std::array<ParamInfo, 18> kParams = {
         "rays (exact, 2(K-1) box tests each), capped draws at most sample-count as large nodes "
         "do, surface-area uses area ratios and the direction-sign order, scaled draws one ray "
         "in 16 (at least one, at most sample-count), so sampling costs about half what filtering "
-        "the node's rays into both children costs."),
+        "the node's rays into both children costs; scaled-min draws as scaled but at least "
+        "sample-min rays, and tests every ray of a node that has no more."),
+    integer<&EdacrtParams::sample_min>(
+        "sample-min", "min samples",
+        "small-nodes=scaled-min: the fewest rays a small node estimates alpha from (scaled "
+        "draws a single ray for a node of 16-31 rays, and its alpha is then 0 or 1). A node of "
+        "at most this many rays tests every ray.",
+        1, 1e6),
     choice<&EdacrtParams::order, kTraversalOrders>(
         "order", "traversal order",
         "Which child is visited first, so its hits cull the rays of the second (Section 3.3). "
@@ -268,6 +276,32 @@ std::string param_text(const EdacrtParams& p, const ParamInfo& info) {
     return out.str();
 }
 
+NodeSampling node_sampling(const EdacrtParams& p, std::size_t rays) {
+    if (rays > p.sample_threshold) return {p.sample_count, false};
+    const auto all = std::uint32_t(rays);  // at most sample_threshold
+    switch (p.small_nodes) {
+        case SmallNodes::every_ray:
+            return {all, true};
+        case SmallNodes::capped:
+            return rays > p.sample_count ? NodeSampling{p.sample_count, false}
+                                         : NodeSampling{all, true};
+        case SmallNodes::surface_area:
+            return {0, false};
+        case SmallNodes::scaled:
+            return {std::uint32_t(
+                        std::clamp<std::size_t>(rays / kScaledSampleShare, 1, p.sample_count)),
+                    false};
+        case SmallNodes::scaled_min: {
+            // A node of at most count rays tests each once (drawing would repeat some).
+            const std::size_t count = std::max<std::size_t>(
+                p.sample_min, std::min<std::size_t>(rays / kScaledSampleShare, p.sample_count));
+            return count >= rays ? NodeSampling{all, true}
+                                 : NodeSampling{std::uint32_t(count), false};
+        }
+    }
+    return {all, true};
+}
+
 float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles) {
     // Never skip when filtering is off, or costs nothing (C_bv = 0).
     if (p.filter_skip == FilterSkip::off || p.cost_filter == 0.0f) return 2.0f;
@@ -305,13 +339,15 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
     const bool free_filter = p.cost_filter == 0.0f;
 
     if ((key == "sample-threshold" || key == "sample-count" || key == "small-nodes" ||
-         key == "sampling-seed") &&
+         key == "sample-min" || key == "sampling-seed") &&
         !sampling)
         return "neither the hit ratio nor the traversal order is sampled: no node samples rays";
     if (key == "sample-threshold" && small_as_large)
         return "every node that samples (more than leaf-rays rays) draws sample-count rays "
                "under this small-node policy, small or large";
-    if (key == "small-nodes" && p.sample_threshold <= p.leaf_rays)
+    if (key == "sample-min" && p.small_nodes != SmallNodes::scaled_min)
+        return "only small-nodes=scaled-min draws at least sample-min rays";
+    if ((key == "small-nodes" || key == "sample-min") && p.sample_threshold <= p.leaf_rays)
         return "no node that samples is small: nodes of at most sample-threshold rays are "
                "leaves (leaf-rays)";
     if (key == "second-child" && threads <= 1)

@@ -2,6 +2,7 @@
 // The parameters of the divide-and-conquer recursion, each described once (ParamInfo): the CLI
 // flags, the viewer's widgets and tooltips, the viewer's script keys and the range checks are
 // all generated from edacrt_param_info().
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -49,12 +50,14 @@ enum class SmallNodes : std::uint8_t {
     capped,        // draw at most sample_count rays, as large nodes do
     surface_area,  // surface-area ratios (and the direction-sign order)
     scaled,        // draw one ray in kScaledSampleShare (at least one, at most sample_count)
+    scaled_min,    // as scaled, but at least sample_min rays; every ray in nodes of no more
 };
 inline constexpr auto kSmallNodes =
     enum_table<SmallNodes>("small-node policy", {{SmallNodes::every_ray, "every-ray"},
                                                  {SmallNodes::capped, "capped"},
                                                  {SmallNodes::surface_area, "surface-area"},
-                                                 {SmallNodes::scaled, "scaled"}});
+                                                 {SmallNodes::scaled, "scaled"},
+                                                 {SmallNodes::scaled_min, "scaled-min"}});
 
 /// SmallNodes::scaled: a sampled ray is tested against the 2(K-1) candidate boxes, two
 /// eight-lane tests for K = 8, as many as filtering eight rays into both children; one sample
@@ -86,7 +89,8 @@ struct EdacrtParams {
     int bins = 8;  // K
     std::uint32_t sample_threshold = 1000;
     std::uint32_t sample_count = 100;
-    SmallNodes small_nodes = SmallNodes::scaled;
+    SmallNodes small_nodes = SmallNodes::scaled_min;
+    std::uint32_t sample_min = 16;  // SmallNodes::scaled_min
     std::uint32_t leaf_rays = 16;
     std::uint32_t leaf_tris = 16;
     std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)
@@ -122,6 +126,17 @@ std::span<const std::string_view> preset_names();
 
 /// Throws InputError naming the first parameter out of range.
 void validate(const EdacrtParams& params);
+
+/// The rays a node samples to estimate alpha and the order (Section 3.2): `count` rays drawn
+/// at random (with replacement), or, when `every_ray`, each of its rays once.
+struct NodeSampling {
+    std::uint32_t count = 0;
+    bool every_ray = false;
+};
+
+/// The sampling of a node of `rays` rays under params' sample_threshold, sample_count and
+/// small_nodes; count 0 when the node takes surface-area ratios instead.
+NodeSampling node_sampling(const EdacrtParams& params, std::size_t rays);
 
 /// Section 3.4: the hit ratio above which a child's rays pass to it unfiltered (never, above
 /// 1, with FilterSkip::off); the child holds `child_triangles` triangles.

@@ -65,6 +65,8 @@ struct Split {
     std::size_t count[2];
     float alpha[2];  // estimated hit ratios
     int first;       // the side visited first
+    AlphaSource alpha_source;
+    std::uint32_t samples;  // rays sampled for alpha or the order
 };
 
 /// The phases of a node's work, timed apart by statistics runs.
@@ -264,9 +266,14 @@ class Recursion {
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
             if (!bin(node, split, sc)) return false;
         }
-        const std::uint32_t samples = estimate_hit_ratios(node, split.bins.axis, sc);
+        const NodeSampling sampling = estimate_hit_ratios(node, split.bins.axis, sc);
+        const std::uint32_t samples = sampling.count;
         const bool sampled = samples > 0;
         const bool sampled_alpha = sampled && p_.hit_ratio == HitRatio::sampled;
+        split.samples = samples;
+        split.alpha_source = !sampled_alpha       ? AlphaSource::area
+                             : sampling.every_ray ? AlphaSource::every_ray
+                                                  : AlphaSource::sampled;
         const float box_area = node.box.surface_area();
         // C(V -> {V_L, V_R}) = C_T + C_I (alpha_L N_L + alpha_R N_R), per ray of the node;
         // a leaf costs C_I N. Every candidate pays the same C_T and C_I per test, so the
@@ -375,37 +382,26 @@ class Recursion {
     }
 
     /// Ray sampling (Section 3.2, ray_sampling.h): for every candidate, how many sampled rays
-    /// hit each child box, and which child each enters first. Returns the number of samples,
-    /// 0 when this node takes surface-area ratios instead.
-    std::uint32_t estimate_hit_ratios(const Node& node, int axis, RecursionScratch& sc) {
+    /// hit each child box, and which child each enters first. Returns the sampling, count 0
+    /// when this node takes surface-area ratios instead.
+    NodeSampling estimate_hit_ratios(const Node& node, int axis, RecursionScratch& sc) {
         const bool wanted =
             p_.hit_ratio == HitRatio::sampled || p_.order == TraversalOrder::sampled;
-        const bool small = node.ray_count <= p_.sample_threshold;
-        if (!wanted || (small && p_.small_nodes == SmallNodes::surface_area)) return 0;
+        const NodeSampling sampling = wanted ? node_sampling(p_, node.ray_count) : NodeSampling{};
+        if (sampling.count == 0) return sampling;
         [[maybe_unused]] auto timer = obs_.time(Phase::sampling, node.depth);
-        // Large nodes, and small ones under the `capped` policy, draw sample_count rays (with
-        // replacement) from a generator seeded by the node, so a batch traces the same way
-        // every time; small ones under `scaled` draw one in kScaledSampleShare; otherwise
-        // every ray is a sample.
-        const bool draw =
-            !small || p_.small_nodes == SmallNodes::scaled ||
-            (p_.small_nodes == SmallNodes::capped && node.ray_count > p_.sample_count);
-        std::uint32_t samples = p_.sample_count;
-        if (!draw)
-            samples = std::uint32_t(node.ray_count);
-        else if (small && p_.small_nodes == SmallNodes::scaled)
-            samples = std::uint32_t(
-                std::clamp<std::size_t>(node.ray_count / kScaledSampleShare, 1, p_.sample_count));
+        // Drawn rays come from a generator seeded by the node, so a batch traces the same way
+        // every time.
         const auto tests_per_sample = std::uint32_t(2 * (p_.bins - 1));
-        box_tests_ += std::uint64_t(samples) * tests_per_sample;
-        obs_.sampled(node, samples, std::uint64_t(samples) * tests_per_sample);
-        const RaySample sample{samples, draw,
+        box_tests_ += std::uint64_t(sampling.count) * tests_per_sample;
+        obs_.sampled(node, sampling.count, std::uint64_t(sampling.count) * tests_per_sample);
+        const RaySample sample{sampling.count, !sampling.every_ray,
                                hash_combine(hash_combine(p_.seed, std::uint32_t(node.depth)),
                                             std::uint32_t(node.ray_count))};
         sample_rays(batch_.stream, node.ray_begin, node.ray_count, sample, axis,
                     std::span<const BinSplit>(sc.splits), sc.sampling,
                     [&](std::uint32_t ray) { obs_.sampled_ray(ray, tests_per_sample); });
-        return samples;
+        return sampling;
     }
 
     std::size_t count_negative(const Node& node, int axis) const {

@@ -1,10 +1,13 @@
 #pragma once
 // What a trace call did: totals for every call, and (on request) per recursion level and per
 // ray, for the viewer's tables and heat-maps and for the benchmarks.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "geometry/aabb.h"
+#include "util/enum_table.h"
 
 namespace edacrt {
 
@@ -21,6 +24,21 @@ struct TraceStats {
         return *this;
     }
 };
+
+/// Where a split node's hit ratios alpha came from.
+enum class AlphaSource : std::uint8_t {
+    sampled,    // the share of rays drawn at random that hit each child box
+    area,       // child box area / node box area
+    every_ray,  // the share of all the node's rays: exact
+};
+inline constexpr auto kAlphaSources =
+    enum_table<AlphaSource>("alpha source", {{AlphaSource::sampled, "sampled"},
+                                             {AlphaSource::area, "area"},
+                                             {AlphaSource::every_ray, "every ray"}});
+
+/// Per-node alpha errors are counted in bins of this width, [0, 0.01), [0.01, 0.02), ...
+inline constexpr int kAlphaErrorBins = 100;
+inline constexpr double kAlphaErrorBinWidth = 1.0 / kAlphaErrorBins;
 
 /// One level of a divide-and-conquer recursion (level 0 is the scene box's node).
 struct LevelStats {
@@ -52,12 +70,35 @@ struct LevelStats {
     double alpha_estimated_sum = 0.0;
     double alpha_true_sum = 0.0;
     double alpha_error_sum = 0.0;  // of |estimated - true|
+    // ...and their distribution over the children (the level means hide single nodes far off).
+    std::uint64_t alpha_error_bins[kAlphaErrorBins] = {};
+    double alpha_error_max = 0.0;
+    std::uint64_t sampled_nodes = 0;  // nodes that sampled rays (sampled_rays of them)
+    std::uint64_t alpha_sources[kAlphaSources.size()] = {};  // split nodes by AlphaSource
     // Wall time of the level's own work on the recursion's thread, by phase (sampling, binning
     // and partitioning, filtering, leaves); large nodes run their phases in parallel.
     double phase_seconds[4] = {0.0, 0.0, 0.0, 0.0};
 
     double seconds() const {
         return phase_seconds[0] + phase_seconds[1] + phase_seconds[2] + phase_seconds[3];
+    }
+
+    void add_alpha_error(double error) {
+        ++alpha_error_bins[std::min(int(error * kAlphaErrorBins), kAlphaErrorBins - 1)];
+        alpha_error_max = std::max(alpha_error_max, error);
+    }
+
+    /// The alpha error that a share q of the children do not exceed: the upper end of its bin
+    /// (or the largest error, if less); 0 without children.
+    double alpha_error_quantile(double q) const {
+        const double rank = q * double(alpha_children);
+        std::uint64_t below = 0;
+        for (int b = 0; b < kAlphaErrorBins; ++b) {
+            below += alpha_error_bins[b];
+            if (below > 0 && double(below) >= rank)
+                return std::min(double(b + 1) * kAlphaErrorBinWidth, alpha_error_max);
+        }
+        return alpha_error_max;
     }
 
     LevelStats& operator+=(const LevelStats& o) {
@@ -82,6 +123,11 @@ struct LevelStats {
         alpha_estimated_sum += o.alpha_estimated_sum;
         alpha_true_sum += o.alpha_true_sum;
         alpha_error_sum += o.alpha_error_sum;
+        for (int b = 0; b < kAlphaErrorBins; ++b) alpha_error_bins[b] += o.alpha_error_bins[b];
+        alpha_error_max = std::max(alpha_error_max, o.alpha_error_max);
+        sampled_nodes += o.sampled_nodes;
+        for (std::size_t i = 0; i < kAlphaSources.size(); ++i)
+            alpha_sources[i] += o.alpha_sources[i];
         for (int i = 0; i < 4; ++i) phase_seconds[i] += o.phase_seconds[i];
         return *this;
     }
@@ -116,7 +162,7 @@ struct RayStats {
 struct CandidateSplit {
     Aabb left, right;
     std::uint32_t left_triangles = 0, right_triangles = 0;
-    float alpha_left = 0.0f, alpha_right = 0.0f;  // sampled hit ratios (or area ratios)
+    float alpha_left = 0.0f, alpha_right = 0.0f;  // hit ratios (NodeRecord::alpha_source)
     float cost = 0.0f;                            // C_T + C_I (a_L N_L + a_R N_R); inf if empty
     float plane = 0.0f;  // on the node's axis: triangles whose centroid lies below go left
 };
@@ -137,12 +183,20 @@ struct NodeRecord {
     std::int32_t chosen = -1;  // index into candidates; -1 for a leaf
     bool left_first = true;
     float alpha_true[2] = {0.0f, 0.0f};  // share of the node's rays that hit each child's box
+    AlphaSource alpha_source = AlphaSource::sampled;  // of the candidates' alpha
+    std::uint32_t samples = 0;  // rays sampled for alpha or the order (0: none)
     bool filter_skipped[2] = {false, false};
     std::uint32_t rays_passed[2] = {0, 0};
     std::vector<CandidateSplit> candidates;
     // Where the node's `rays` ray ids start in TraceDetail::node_ray_ids; -1 past that
     // recording's budget.
     std::int64_t ray_ids = -1;
+
+    /// |estimated - true| alpha of the chosen split's child `side` (0 left, 1 right).
+    double alpha_error(int side) const {
+        const CandidateSplit& c = candidates[std::size_t(chosen)];
+        return std::abs(double(side == 0 ? c.alpha_left : c.alpha_right) - alpha_true[side]);
+    }
 };
 
 /// A node the followed ray (TraceDetail::follow_ray) entered.

@@ -39,14 +39,16 @@ EdacrtParams with(std::function<void(EdacrtParams&)> change, EdacrtParams p = {}
     return p;
 }
 
-const Keys kSampling = {"sample-threshold", "sample-count", "small-nodes", "sampling-seed"};
+const Keys kSampling = {"sample-threshold", "sample-count", "small-nodes", "sample-min",
+                        "sampling-seed"};
 
 TEST(ParamNoEffect, EachParameterUnderTheSwitchesThatDecideIt) {
     // Defaults: C_T cancels out of the split choice without the cost leaf, C_child is for
     // filter-skip=triangles only; split second children need a second thread.
     EXPECT_EQ(inert({}, 4), (Keys{"c-t", "c-child"}));
     EXPECT_EQ(inert({}, 1), (Keys{"c-t", "c-child", "second-child"}));
-    EXPECT_EQ(inert(paper_params(), 4), (Keys{"c-t", "c-child"}));
+    // The paper samples every ray of small nodes: no minimum.
+    EXPECT_EQ(inert(paper_params(), 4), (Keys{"c-t", "c-child", "sample-min"}));
     // DACRT samples nothing and always filters.
     Keys dacrt = kSampling;
     dacrt.insert({"c-t", "c-i", "c-bv", "c-child"});
@@ -73,32 +75,32 @@ TEST(ParamNoEffect, EachParameterUnderTheSwitchesThatDecideIt) {
               (Keys{"c-t", "c-i", "c-child", "filter-skip"}));
     // No small node samples when the small ones are all leaves.
     EXPECT_EQ(inert(with([](auto& p) { p.sample_threshold = 16; }), 4),
-              (Keys{"c-t", "c-child", "small-nodes"}));
+              (Keys{"c-t", "c-child", "small-nodes", "sample-min"}));
     // Small nodes that draw as large ones do make the threshold inert.
     EXPECT_EQ(inert(with([](auto& p) {
                         p.small_nodes = SmallNodes::capped;
                         p.sample_count = 16;
                     }),
                     4),
-              (Keys{"c-t", "c-child", "sample-threshold"}));
+              (Keys{"c-t", "c-child", "sample-threshold", "sample-min"}));
     EXPECT_EQ(inert(with([](auto& p) {
                         p.small_nodes = SmallNodes::capped;
                         p.sample_count = 17;
                     }),
                     4),
-              (Keys{"c-t", "c-child"}));
+              (Keys{"c-t", "c-child", "sample-min"}));
     EXPECT_EQ(inert(with([](auto& p) {
                         p.small_nodes = SmallNodes::scaled;
                         p.sample_count = 1;  // 16 rays per sample, and nodes of 17 rays sample
                     }),
                     4),
-              (Keys{"c-t", "c-child", "sample-threshold"}));
+              (Keys{"c-t", "c-child", "sample-threshold", "sample-min"}));
     EXPECT_EQ(inert(with([](auto& p) {
                         p.small_nodes = SmallNodes::scaled;
                         p.sample_count = 2;
                     }),
                     4),
-              (Keys{"c-t", "c-child"}));
+              (Keys{"c-t", "c-child", "sample-min"}));
     // Whatever the switches, these always matter.
     for (const EdacrtParams& p : {EdacrtParams{}, paper_params(), dacrt_params()})
         for (const char* key : {"bins", "binning", "hit-ratio", "order", "leaf-rays", "leaf-tris",

@@ -325,6 +325,57 @@ TEST(EdacrtDecisions, SampledAlphaIsTheTrueAlphaWhenEveryRayIsSampled) {
     EXPECT_GT(children, 100u);
 }
 
+TEST(EdacrtDecisions, FarChildUnstoppedDropsTheRaysThatEnterTheFirstChildFirst) {
+    // Every candidate that separates the clusters puts 40 triangles on each side, and every
+    // ray hits both boxes (alpha_L = alpha_R = 1): the paper's cost is C_T + 80. Rays from -x
+    // enter the left box first; from +x the right one. The order takes the left child first
+    // (a tie goes left), so `unstopped` keeps in the right child's term only the rays from +x.
+    const Scene scene = two_clusters();
+    std::vector<Ray> half = horizontal_rays(-10, 1, 50);
+    const std::vector<Ray> from_right = horizontal_rays(20, -1, 50);
+    half.insert(half.end(), from_right.begin(), from_right.end());
+    struct Case {
+        const char* what;
+        std::vector<Ray> rays;
+        FarChild far_child;
+        HitRatio hit_ratio;
+        float cost;
+    };
+    const Case cases[] = {
+        {"from -x, paper", horizontal_rays(-10, 1, 100), FarChild::paper, HitRatio::sampled, 82},
+        {"from -x, unstopped", horizontal_rays(-10, 1, 100), FarChild::unstopped, HitRatio::sampled,
+         42},
+        {"both ways, paper", half, FarChild::paper, HitRatio::sampled, 82},
+        {"both ways, unstopped", half, FarChild::unstopped, HitRatio::sampled, 62},
+        // Area ratios have no sampled rays to drop: the switch changes nothing.
+        {"area ratios, unstopped", horizontal_rays(-10, 1, 100), FarChild::unstopped,
+         HitRatio::surface_area, -1},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        EdacrtParams p = exact_root();
+        p.far_child = c.far_child;
+        p.hit_ratio = c.hit_ratio;
+        const NodeRecord node = root(trace_root(scene, c.rays, p));
+        ASSERT_FALSE(node.leaf);
+        EXPECT_TRUE(node.left_first);
+        const CandidateSplit& chosen = node.candidates.at(std::size_t(node.chosen));
+        EXPECT_EQ(chosen.left_triangles, 40u);
+        EXPECT_EQ(chosen.right_triangles, 40u);
+        if (c.hit_ratio == HitRatio::sampled) {
+            // The hit ratios themselves (and with them filter skipping) stay the sampled ones.
+            EXPECT_FLOAT_EQ(chosen.alpha_left, 1.0f);
+            EXPECT_FLOAT_EQ(chosen.alpha_right, 1.0f);
+            EXPECT_FLOAT_EQ(chosen.cost, c.cost);
+        } else {
+            p.far_child = FarChild::paper;
+            const NodeRecord paper = root(trace_root(scene, c.rays, p));
+            EXPECT_EQ(node.chosen, paper.chosen);
+            EXPECT_FLOAT_EQ(chosen.cost, paper.candidates.at(std::size_t(paper.chosen)).cost);
+        }
+    }
+}
+
 TEST(EdacrtDecisions, LeavesByCountAndByCost) {
     const Scene scene = two_clusters();
     const std::vector<Ray> down = down_rays(60, 100);
@@ -455,6 +506,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
     EXPECT_EQ(paper.cost_leaf_max_tris, 0u);
     EXPECT_EQ(paper.sample_threshold, 1000u);
     EXPECT_EQ(paper.sample_count, 100u);
+    EXPECT_EQ(paper.far_child, FarChild::paper);
     const EdacrtParams dacrt = preset_params("dacrt");
     EXPECT_EQ(dacrt.hit_ratio, HitRatio::surface_area);
     EXPECT_EQ(dacrt.order, TraversalOrder::direction_sign);
@@ -465,7 +517,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
 
 TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
     EdacrtParams p;
-    EXPECT_EQ(edacrt_param_info().size(), 19u);
+    EXPECT_EQ(edacrt_param_info().size(), 20u);
     for (const ParamInfo& info : edacrt_param_info()) {
         SCOPED_TRACE(std::string(info.key));
         EXPECT_EQ(find_param(info.key), &info);

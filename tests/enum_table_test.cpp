@@ -60,6 +60,7 @@ TEST(EnumTable, EveryTableRoundTripsAndRefusesUnknownNames) {
     test::expect_enum_table(kBinnings);
     test::expect_enum_table(kSecondChildren);
     test::expect_enum_table(kAlphaSources);
+    test::expect_enum_table(kFarChildren);
     test::expect_enum_table(cli::kRaySetKinds);
 }
 
@@ -85,11 +86,18 @@ TEST(EnumTable, ParameterChoicesComeFromTheTables) {
     EXPECT_EQ(choices("small-nodes"), enum_name_list(kSmallNodes));
     EXPECT_EQ(choices("binning"), enum_name_list(kBinnings));
     EXPECT_EQ(choices("second-child"), enum_name_list(kSecondChildren));
+    EXPECT_EQ(choices("far-child"), enum_name_list(kFarChildren));
     for (const auto& entry : kSecondChildren) {
         EdacrtParams params;
         set_param(params, *find_param("second-child"), entry.name);
         EXPECT_EQ(params.second_child, entry.value);
         EXPECT_EQ(param_text(params, *find_param("second-child")), entry.name);
+    }
+    for (const auto& entry : kFarChildren) {
+        EdacrtParams params;
+        set_param(params, *find_param("far-child"), entry.name);
+        EXPECT_EQ(params.far_child, entry.value);
+        EXPECT_EQ(param_text(params, *find_param("far-child")), entry.name);
     }
 }
 

@@ -51,11 +51,12 @@ TEST(ParamNoEffect, EachParameterUnderTheSwitchesThatDecideIt) {
     EXPECT_EQ(inert(paper_params(), 4), (Keys{"c-t", "c-child", "sample-min"}));
     // DACRT samples nothing and always filters.
     Keys dacrt = kSampling;
-    dacrt.insert({"c-t", "c-i", "c-bv", "c-child"});
+    dacrt.insert({"c-t", "c-i", "c-bv", "c-child", "far-child"});
     EXPECT_EQ(inert(dacrt_params(), 4), dacrt);
     // Sampling is on when either the hit ratio or the order is sampled.
+    // Area ratios leave the far child's term as it is.
     EXPECT_EQ(inert(with([](auto& p) { p.hit_ratio = HitRatio::surface_area; }), 4),
-              (Keys{"c-t", "c-child"}));
+              (Keys{"c-t", "c-child", "far-child"}));
     EXPECT_EQ(inert(with([](auto& p) { p.order = TraversalOrder::left_first; }), 4),
               (Keys{"c-t", "c-child"}));
     // The cost leaf takes C_T and C_I, if it reaches above the count leaf.

@@ -176,6 +176,9 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
              " --filter-skip sometimes",
          "filter-skip: 'sometimes' is not one of off|paper|triangles"},
         {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
+             " --far-child always",
+         "far-child: 'always' is not one of paper|unstopped"},
+        {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
              " --preset fast",
          "unknown preset 'fast' (default|paper|dacrt)"},
         {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
@@ -189,6 +192,9 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
          "--filter-skip is what makes dacrt DACRT"},
         {"frobnicate", "unknown command 'frobnicate'"},
     };
+    const auto unstopped = test::run_cli("trace --scene builtin:cornell --rays " + path("one.bin") +
+                                         " --out " + path("h.bin") + " --far-child unstopped");
+    EXPECT_EQ(unstopped.exit_code, 0) << unstopped.output;
     for (const auto& c : cases) {
         const auto result = test::run_cli(c.args);
         EXPECT_NE(result.exit_code, 0) << c.args;

@@ -94,6 +94,12 @@ std::vector<Variant> variants() {
     });
     edacrt("filter skip off", [](EdacrtParams& p) { p.filter_skip = FilterSkip::off; });
     edacrt("paper preset", [](EdacrtParams& p) { p = paper_params(); });
+    edacrt("far child unstopped", [](EdacrtParams& p) { p.far_child = FarChild::unstopped; });
+    edacrt("dacrt, sampled alpha, far child unstopped", [](EdacrtParams& p) {
+        p = dacrt_params();
+        p.hit_ratio = HitRatio::sampled;
+        p.far_child = FarChild::unstopped;
+    });
     edacrt("leaf by cost anywhere", [](EdacrtParams& p) { p.cost_leaf_max_tris = 1'000'000; });
     edacrt("always skip filtering", [](EdacrtParams& p) { p.cost_filter = 1e9f; });
     return out;

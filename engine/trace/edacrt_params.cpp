@@ -74,7 +74,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 19> kParams = {
+const std::array<ParamInfo, 20> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -136,6 +136,13 @@ const std::array<ParamInfo, 19> kParams = {
         "the same culling and box tests, the second child recursing twice, and subtrees in "
         "parallel. Only where it can pay: with 512 missed rays or more, and on more than one "
         "thread (on one, split is after-first)."),
+    choice<&EdacrtParams::far_child, kFarChildren>(
+        "far-child", "far child",
+        "Not in the paper: what the cost counts of the child visited second. paper: alpha, "
+        "every sampled ray that hits its box. unstopped: only the sampled rays that reach its box "
+        "without entering the first child's box before it (those are taken as stopped by a hit "
+        "there, as the first child's hits cull them); rays that start inside both boxes count "
+        "for the side they head to, as in the order. Needs sampled hit ratios."),
     integer<&EdacrtParams::leaf_rays>(
         "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
     integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",
@@ -203,6 +210,7 @@ EdacrtParams paper_params() {
     p.sample_count = 100;
     p.second_child = SecondChild::after_first;
     p.presplit = 0.0f;
+    p.far_child = FarChild::paper;
     return p;
 }
 
@@ -350,6 +358,8 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
     if ((key == "small-nodes" || key == "sample-min") && p.sample_threshold <= p.leaf_rays)
         return "no node that samples is small: nodes of at most sample-threshold rays are "
                "leaves (leaf-rays)";
+    if (key == "far-child" && p.hit_ratio != HitRatio::sampled)
+        return "area hit ratios have no sampled rays to drop from the second child's term";
     if (key == "second-child" && threads <= 1)
         return "on one thread the second child's rays all wait for the first child (split "
                "needs a second thread for its task)";

@@ -72,6 +72,14 @@ enum class Binning : std::uint8_t {
 inline constexpr auto kBinnings = enum_table<Binning>(
     "binning", {{Binning::node_box, "node-box"}, {Binning::centroids, "centroids"}});
 
+/// What the cost counts of the child visited second (not in the paper; see choose_split).
+enum class FarChild : std::uint8_t {
+    paper,      // alpha: every sampled ray that hits its box (Section 3.2)
+    unstopped,  // only the sampled rays that do not enter the first child's box before it
+};
+inline constexpr auto kFarChildren = enum_table<FarChild>(
+    "far-child cost", {{FarChild::paper, "paper"}, {FarChild::unstopped, "unstopped"}});
+
 /// When the second child gets its rays.
 enum class SecondChild : std::uint8_t {
     after_first,  // the paper: all of them once the first child is done (its hits cull them)
@@ -103,6 +111,7 @@ struct EdacrtParams {
     FilterSkip filter_skip = FilterSkip::paper;
     Binning binning = Binning::node_box;
     SecondChild second_child = SecondChild::split;
+    FarChild far_child = FarChild::paper;
     float presplit = 0.3f;   // extra triangle pieces per triangle (not in the paper; 0: off)
     std::uint32_t seed = 1;  // of the per-node ray sampling
 

@@ -282,6 +282,17 @@ class Recursion {
         float best_key = kInfinity, best_cost = kInfinity;
         // Deep nodes: the most balanced candidate instead of the cheapest (kBalancedDepth).
         const bool balance = node.depth >= kBalancedDepth;
+        // The side each candidate visits first (Section 3.3): the child most sampled rays
+        // enter first, or the near one by the majority sign of the rays' direction on the axis.
+        const bool by_samples = sampled && p_.order == TraversalOrder::sampled;
+        int sign_first = 0;
+        if (!by_samples && p_.order != TraversalOrder::left_first)
+            sign_first = 2 * count_negative(node, split.bins.axis) <= node.ray_count ? 0 : 1;
+        const auto first_side = [&](int j) {
+            if (!by_samples) return sign_first;
+            return sc.sampling.left_first[j] >= sc.sampling.right_first[j] ? 0 : 1;
+        };
+        const bool unstopped = sampled_alpha && p_.far_child == FarChild::unstopped;
         int best = -1;
         for (int j = 0; j < p_.bins - 1; ++j) {
             const BinSplit& s = sc.splits[j];
@@ -300,8 +311,22 @@ class Recursion {
                 c.alpha_left = box_area > 0.0f ? c.left.surface_area() / box_area : 1.0f;
                 c.alpha_right = box_area > 0.0f ? c.right.surface_area() / box_area : 1.0f;
             }
+            // FarChild::unstopped: a sampled ray that enters the first child's box before the
+            // second's meets the first child's triangles first; taken as stopped there (its hit
+            // culls it from the second child's filter), it drops out of the second child's
+            // term. What remains is the share of samples that enter the second box first
+            // (sample_rays' *_first counts), so C = C_T + C_I (alpha_f N_f + phi_s N_s),
+            // phi_s <= alpha_s. Rays that start inside both boxes count for the side they head
+            // to: the nearer parts of each child are visited first further down.
+            float weight[2] = {c.alpha_left, c.alpha_right};
+            if (unstopped) {
+                const int second = 1 - first_side(j);
+                const std::uint32_t entered_first =
+                    second == 0 ? sc.sampling.left_first[j] : sc.sampling.right_first[j];
+                weight[second] = float(entered_first) / float(samples);
+            }
             const float tests =
-                c.alpha_left * float(c.left_triangles) + c.alpha_right * float(c.right_triangles);
+                weight[0] * float(c.left_triangles) + weight[1] * float(c.right_triangles);
             c.cost = p_.cost_traversal + p_.cost_intersect * tests;
             obs_.candidate(visit, c);
             const float key =
@@ -322,12 +347,7 @@ class Recursion {
         split.last_left_bin = best;
         split.box[0] = sc.splits[best].left;
         split.box[1] = sc.splits[best].right;
-        if (sampled && p_.order == TraversalOrder::sampled)
-            split.first = sc.sampling.left_first[best] >= sc.sampling.right_first[best] ? 0 : 1;
-        else if (p_.order == TraversalOrder::left_first)
-            split.first = 0;
-        else  // the near child by the majority sign of the rays' direction on the axis
-            split.first = 2 * count_negative(node, split.bins.axis) <= node.ray_count ? 0 : 1;
+        split.first = first_side(best);
         return true;
     }
 

@@ -14,11 +14,13 @@ MARKER = re.compile(r"<!-- generated: revision=(\S+) -->")
 
 
 def revision():
-    """HEAD's short hash, with '+changes' when engine/, cli/ or bench/ differ from it."""
+    """HEAD's short hash, with '+changes' when the code (engine/, cli/, the bench scripts)
+    differs from it."""
     git = lambda *a: subprocess.run(["git", *a], cwd=ROOT, capture_output=True,  # noqa: E731
                                     text=True).stdout.strip()
     head = git("rev-parse", "--short", "HEAD") or "unknown"
-    return head + ("+changes" if git("status", "--porcelain", "--", "engine", "cli", "bench")
+    return head + ("+changes" if git("status", "--porcelain", "--", "engine", "cli", "bench/*.py",
+                                            "bench/*.cpp")
                    else "")
 
 

@@ -164,28 +164,30 @@ class Splitter {
 
 /// Pieces per triangle: 1 + floor(scale * area), the scale the largest (found by bisection)
 /// that keeps the extra pieces within the budget and gives none to a box smaller than
-/// `min_area`.
+/// `min_area`. Only boxes of at least `min_area` can get pieces, so the bisection counts over
+/// those alone.
 std::vector<std::uint32_t> piece_counts(std::span<const double> areas, std::size_t budget,
                                         double min_area) {
+    std::vector<std::uint32_t> counts(areas.size(), 1);
+    std::vector<std::uint32_t> large;  // the triangles that may be cut
+    double largest = 0.0;
+    for (std::size_t i = 0; i < areas.size(); ++i) {
+        largest = std::max(largest, areas[i]);
+        if (areas[i] >= min_area && areas[i] > 0.0) large.push_back(std::uint32_t(i));
+    }
+    if (!(largest > 0.0) || budget == 0 || large.empty()) return counts;
     const auto pieces = [&](double scale, std::size_t i) {
         const double extra = std::floor(scale * areas[i]);
         return 1u + std::uint32_t(std::min(extra, double(kMaxPieces - 1)));
     };
     const auto extra_pieces = [&](double scale) {
-        return tbb::parallel_reduce(
-            tbb::blocked_range<std::size_t>(0, areas.size(), 4096), std::size_t{0},
-            [&](const tbb::blocked_range<std::size_t>& range, std::size_t sum) {
-                for (std::size_t i = range.begin(); i != range.end(); ++i)
-                    sum += pieces(scale, i) - 1;
-                return sum;
-            },
-            std::plus<>());
+        std::size_t sum = 0;
+        for (const std::uint32_t i : large) sum += pieces(scale, i) - 1;
+        return sum;
     };
-    double largest = 0.0;
-    for (const double area : areas) largest = std::max(largest, area);
-    std::vector<std::uint32_t> counts(areas.size(), 1);
-    if (!(largest > 0.0) || budget == 0) return counts;
-    // At scale 1 / min_area a box of min_area gets its first extra piece.
+    // At scale 1 / min_area a box of min_area gets its first extra piece. (Where the bisection
+    // tries a larger scale, the count over `large` already exceeds the budget at 1 / min_area,
+    // as the count over all would: the same decisions.)
     double lo = 0.0, hi = double(budget + 1) / largest;  // hi gives the largest alone > budget
     if (min_area > 0.0 && 1.0 / min_area < hi && extra_pieces(1.0 / min_area) <= budget)
         lo = 1.0 / min_area;
@@ -194,7 +196,7 @@ std::vector<std::uint32_t> piece_counts(std::span<const double> areas, std::size
             const double mid = 0.5 * (lo + hi);
             (extra_pieces(mid) <= budget ? lo : hi) = mid;
         }
-    for (std::size_t i = 0; i < areas.size(); ++i) counts[i] = pieces(lo, i);
+    for (const std::uint32_t i : large) counts[i] = pieces(lo, i);
     return counts;
 }
 
@@ -207,20 +209,41 @@ Aabb clipped_bounds(const Triangle& tri, const Aabb& region) {
 }
 
 FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra) {
-    std::vector<double> areas(triangles.size());
-    Box scene;
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const Box box = to_double(exact_bounds(triangles[i]));
-        const double area = box.surface_area();
-        areas[i] = std::isfinite(area) ? area : 0.0;  // (loaders refuse such corners anyway)
-        scene.lo = glm::min(scene.lo, box.lo);
-        scene.hi = glm::max(scene.hi, box.hi);
-    }
     const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(triangles.size()));
-    double mean = 0.0;
-    for (const double area : areas) mean += area;
-    mean /= double(std::max<std::size_t>(areas.size(), 1));
-    const std::vector<std::uint32_t> counts = piece_counts(areas, budget, kMinSplitArea * mean);
+    if (budget == 0) return {};
+    std::vector<double> areas(triangles.size());
+    // One parallel pass: the areas, their sum and largest, and the scene box (deterministic: the
+    // same sum, so the same pieces, for any thread count).
+    struct Sums {
+        double total = 0.0, largest = 0.0;
+        Box scene;
+    };
+    const Sums sums = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), Sums{},
+        [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const Box box = to_double(exact_bounds(triangles[i]));
+                const double area = box.surface_area();
+                areas[i] = std::isfinite(area) ? area : 0.0;  // (loaders refuse such corners)
+                sum.total += areas[i];
+                sum.largest = std::max(sum.largest, areas[i]);
+                sum.scene.lo = glm::min(sum.scene.lo, box.lo);
+                sum.scene.hi = glm::max(sum.scene.hi, box.hi);
+            }
+            return sum;
+        },
+        [](Sums a, const Sums& b) {
+            a.total += b.total;
+            a.largest = std::max(a.largest, b.largest);
+            a.scene.lo = glm::min(a.scene.lo, b.scene.lo);
+            a.scene.hi = glm::max(a.scene.hi, b.scene.hi);
+            return a;
+        });
+    const double min_area = kMinSplitArea * sums.total / double(triangles.size());
+    // A mesh of alike triangles (the bunny) has none to cut: no need to share out the budget.
+    if (!(sums.largest >= min_area)) return {};
+    const Box& scene = sums.scene;
+    const std::vector<std::uint32_t> counts = piece_counts(areas, budget, min_area);
     if (std::all_of(counts.begin(), counts.end(), [](std::uint32_t c) { return c == 1; }))
         return {};  // nothing to cut: the caller uses the triangles themselves
     std::vector<std::size_t> offsets(triangles.size() + 1, 0);

@@ -137,7 +137,9 @@ def markdown(args, rows, confirmed, machine, seconds, command, rev):
     threads = sorted({r["threads"] for r in rows})
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     lines = [HEADING, "",
-             generated_line(command, machine, seconds, rev),
+             generated_line(command, machine, seconds, rev,
+                            " Remade from its stored results (`--from-results`)."
+                            if args.from_results else ""),
              "",
              f"Each method's switches, one at a time away from its defaults, timed per frame "
              f"(`set_scene()` + `trace()`, medians of {args.repeat} frames interleaved in a "
@@ -185,6 +187,19 @@ def markdown(args, rows, confirmed, machine, seconds, command, rev):
             lines.append(f"| {method} | {t} | {worst:.2f} | {where} | "
                          f"{best_variant.split(':', 1)[-1] if ':' in best_variant else '-'} | "
                          f"{within} / {len(mine)} |")
+    beyond = {}  # (method, variant): [(ratio, scene, set, threads)], where it beats the default
+    for (m, t, scene, set_), c in sorted(cells.items()):
+        variant = min(c, key=c.get)
+        if 1.0 / c[variant] > TOLERANCE:
+            beyond.setdefault((m, variant), []).append((c[variant], scene, set_, t))
+    if beyond:
+        lines += ["", f"**Where a variant beats the defaults by more than {TOLERANCE:.2f}** "
+                  "(after the head-to-head run; the variant's frame time over the default's, "
+                  "1t/2t for 1 and 2 threads):", "",
+                  "| method | variant | sets |", "|---|---|---|"]
+        for (m, variant), where in sorted(beyond.items(), key=lambda kv: -len(kv[1])):
+            lines.append(f"| {m} | {variant.split(':', 1)[-1]} | " + ", ".join(
+                f"{scene} {set_} {t}t {r:.2f}" for r, scene, set_, t in sorted(where)) + " |")
     lines += ["", f"Where a variant beat the defaults by more than {TOLERANCE:.2f} in the "
               f"sweep, the two ran again head to head on that set for {CONFIRM_REPEAT} frames "
               "(the best of some twenty noisy variants is biased low), and those times count. "
@@ -232,15 +247,20 @@ def main():
         scenes = [s for s in scenes if any(args.out.glob(f"{s}-*t.json"))]
     rows, machine = measure(args, scenes)
     confirmed = {} if args.quick else confirm(args, rows)
-    meta = args.out / "revision"
+    # What measured: the section names it, also when remade from the stored results.
+    meta_path = args.out / "measured.json"
     if not args.from_results:
-        meta.write_text(revision())
-    section, worst = markdown(args, rows, confirmed, machine, time.time() - started, command,
-                              meta.read_text() if meta.exists() else None)
+        meta_path.write_text(json.dumps({"revision": revision(), "command": command,
+                                         "seconds": round(time.time() - started)}))
+    meta = json.loads(meta_path.read_text()) if meta_path.exists() else {}
+    if args.from_results:
+        command = meta.get("command", "bench/sweep.py")
+    section, worst = markdown(args, rows, confirmed, machine, meta.get("seconds"), command,
+                              meta.get("revision"))
     (args.out / "sweep.md").write_text(section)
     if not args.quick:
         (ROOT / "bench" / "results" / "sweep.json").write_text(
-            json.dumps({"machine": machine, "revision": meta.read_text(), "size": args.size,
+            json.dumps({"machine": machine, "revision": meta.get("revision"), "size": args.size,
                         "repeat": args.repeat, "confirmed": [
                             {"method": k[0], "threads": k[1], "scene": k[2], "set": k[3],
                              "ratios": v} for k, v in confirmed.items()],

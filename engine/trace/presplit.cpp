@@ -240,7 +240,7 @@ FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangl
             return a;
         });
     const double min_area = kMinSplitArea * sums.total / double(triangles.size());
-    // A mesh of alike triangles (the bunny) has none to cut: no need to share out the budget.
+    // A mesh of alike triangles has none to cut: no need to share out the budget.
     if (!(sums.largest >= min_area)) return {};
     const Box& scene = sums.scene;
     const std::vector<std::uint32_t> counts = piece_counts(areas, budget, min_area);

@@ -44,7 +44,7 @@ VARIANTS = {
     "dacrt": ["second-child=after-first", "presplit=0", "presplit=1", "leaf-tris=8",
               "leaf-tris=32", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
               "binning=centroids", "cost-leaf-max-tris=64"],
-    "bvh": ["bins=8", "bins=32", "max-leaf=4", "max-leaf=16", "c-t=0.5", "c-t=2"],
+    "bvh": ["bins=4", "bins=16", "max-leaf=4", "max-leaf=16", "c-t=0.5", "c-t=2"],
 }
 
 

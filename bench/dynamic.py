@@ -141,7 +141,7 @@ def section(args, results, json_path, markdown_text, elapsed, loads):
         f"its output in [{json_path.name}](results/{json_path.name}) and "
         f"[{json_path.with_suffix('.md').name}](results/{json_path.with_suffix('.md').name}). "
         f"{machine['cpu']}, {machine['hardware_threads']} hardware threads, `--threads "
-        f"{s['threads']}`, revision {machine['git_revision']}, {machine['date']}; the machine "
+        f"{s['threads']}`, {machine['date']}; the machine "
         f"is shared: {load_text}, so read ratios within a set, not absolute times.",
         "",
         f"Every method follows the animation `{s['animation']}` (a travelling wave moving every "

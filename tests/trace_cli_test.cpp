@@ -187,8 +187,7 @@ TEST_F(TraceCli, BadInputFailsWithAClearMessage) {
         {"trace --scene builtin:cornell --rays " + path("one.bin") + " --out " + path("h.bin") +
              " --method dacrt --hit-ratio sampled",
          "--hit-ratio is what makes dacrt DACRT"},
-        {"render --scene builtin:cornell --method dacrt --filter-skip paper --out " +
-             path("x.png"),
+        {"render --scene builtin:cornell --method dacrt --filter-skip paper --out " + path("x.png"),
          "--filter-skip is what makes dacrt DACRT"},
         {"frobnicate", "unknown command 'frobnicate'"},
     };

@@ -285,12 +285,16 @@ class Recursion {
         // The side each candidate visits first (Section 3.3): the child most sampled rays
         // enter first, or the near one by the majority sign of the rays' direction on the axis.
         const bool by_samples = sampled && p_.order == TraversalOrder::sampled;
-        int sign_first = 0;
-        if (!by_samples && p_.order != TraversalOrder::left_first)
-            sign_first = 2 * count_negative(node, split.bins.axis) <= node.ray_count ? 0 : 1;
+        // The sign count is a pass over the node's rays: made once, and only if asked for.
+        int sign_first = -1;
         const auto first_side = [&](int j) {
-            if (!by_samples) return sign_first;
-            return sc.sampling.left_first[j] >= sc.sampling.right_first[j] ? 0 : 1;
+            if (by_samples) return sc.sampling.left_first[j] >= sc.sampling.right_first[j] ? 0 : 1;
+            if (sign_first < 0)
+                sign_first = p_.order == TraversalOrder::left_first ||
+                                     2 * count_negative(node, split.bins.axis) <= node.ray_count
+                                 ? 0
+                                 : 1;
+            return sign_first;
         };
         const bool unstopped = sampled_alpha && p_.far_child == FarChild::unstopped;
         int best = -1;

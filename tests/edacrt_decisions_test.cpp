@@ -488,13 +488,58 @@ TEST(EdacrtPresplit, OnlyTrianglesMuchLargerThanTheMeanAreCut) {
         const float x = float(i % 10), y = float(i / 10);
         alike.push_back({{x, y, 0}, {x + 1, y, 0}, {x, y + 1 + 0.01f * float(i % 7), 0.5f}});
     }
-    EXPECT_TRUE(presplit_references(alike, 0.3f).empty());  // no triangle cut
-    EXPECT_TRUE(presplit_references(alike, 8.0f).empty());
+    EXPECT_TRUE(plan_presplit(alike, 0.3f).first.empty());  // no triangle cut
+    EXPECT_TRUE(plan_presplit(alike, 8.0f).first.empty());
     std::vector<Triangle> one_large = alike;
     one_large.push_back({{0, 0, -1}, {40, 0, -1}, {0, 40, 5}});
-    const auto references = presplit_references(one_large, 0.3f);
-    EXPECT_EQ(references.size(), one_large.size() + 30);  // the budget, all to the large one
-    for (std::size_t i = 0; i < alike.size(); ++i) EXPECT_EQ(references[i].prim, i);
+    const PresplitPlan plan = plan_presplit(one_large, 0.3f);
+    ASSERT_EQ(plan.first.size(), one_large.size() + 1);
+    EXPECT_EQ(plan.first.back(), one_large.size() + 30);  // the budget, all to the large one
+    for (std::size_t i = 0; i < alike.size(); ++i) EXPECT_EQ(plan.first[i + 1], i + 1);
+}
+
+// Every point of a cut triangle lies in one of its pieces' boxes, each box lies in the whole
+// triangle's conservative box, and together they reach its every side: on walls, slivers, far
+// and tiny triangles, and ones the grid cuts at their corners.
+TEST(EdacrtPresplit, PiecesCoverTheTriangle) {
+    const Aabb grid{{-1e3f, -1e3f, -1e3f}, {1e3f, 1e3f, 1e3f}};
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto contains = [](const Aabb& box, const glm::vec3& p) {
+        return glm::all(glm::lessThanEqual(box.lo, p)) && glm::all(glm::lessThanEqual(p, box.hi));
+    };
+    const std::vector<Triangle> triangles = {
+        {{-900, -900, 0}, {900, -900, 0}, {-900, 900, 0}},             // a floor
+        {{-1e3f, 0, 0}, {1e3f, 1e-3f, 0}, {1e3f, 0, 1e-3f}},           // a sliver
+        {{999, 999, 999}, {999.001f, 999, 999}, {999, 999.2f, 1000}},  // far and small
+        {{0, 0, 0}, {500, 500, 500}, {250, 0, 500}},                   // corners on grid planes
+        {{-3, 7, 1}, {400, -200, 31}, {17, 350, -600}},                // oblique
+    };
+    for (const Triangle& tri : triangles) {
+        for (const std::size_t count : {2u, 3u, 7u, 64u}) {
+            SCOPED_TRACE(testing::Message() << count << " pieces");
+            std::vector<Aabb> pieces(count);
+            const std::size_t made = split_triangle(tri, grid, pieces);
+            ASSERT_GE(made, 1u);
+            ASSERT_LE(made, count);
+            const Aabb whole = conservative_bounds(tri);
+            Aabb all;
+            for (std::size_t k = 0; k < made; ++k) {
+                EXPECT_TRUE(contains(whole, pieces[k].lo) && contains(whole, pieces[k].hi));
+                all.extend(pieces[k]);
+            }
+            EXPECT_EQ(all.lo, whole.lo);
+            EXPECT_EQ(all.hi, whole.hi);
+            for (int i = 0; i < 2000; ++i) {
+                float u = unit(rng), v = unit(rng);
+                if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+                const glm::vec3 p = tri.p0 + u * (tri.p1 - tri.p0) + v * (tri.p2 - tri.p0);
+                bool inside = false;
+                for (std::size_t k = 0; k < made && !inside; ++k) inside = contains(pieces[k], p);
+                ASSERT_TRUE(inside) << "point " << i;
+            }
+        }
+    }
 }
 
 TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {

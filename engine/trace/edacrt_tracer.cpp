@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "trace/edacrt_observer.h"
 #include "trace/presplit.h"
@@ -37,32 +38,70 @@ void EdacrtTracer::prepare_triangles() {
     // Per frame (update_scene() of an animation): in parallel, into the storage of the last
     // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece keeps its
     // whole triangle for the intersection and is binned by its clipped box's centre.
-    const FrameVector<PrimReference> refs = params_.presplit != 0.0f && !triangles_.empty()
-                                                ? presplit_references(triangles_, params_.presplit)
-                                                : FrameVector<PrimReference>{};
-    const bool pieces = !refs.empty();  // empty: no triangle was cut
-    const std::size_t n = pieces ? refs.size() : triangles_.size();
+    const PresplitPlan plan = params_.presplit != 0.0f && !triangles_.empty()
+                                  ? plan_presplit(triangles_, params_.presplit)
+                                  : PresplitPlan{};
+    const bool pieces = !plan.first.empty();  // empty: no triangle is cut
+    const std::size_t n = pieces ? plan.first.back() : triangles_.size();
     scene_.triangles.resize(n);
     scene_.bounds.resize(n);
     scene_.centroids.resize(n);
     scene_.prims.resize(n);
-    scene_.box = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, n, 4096), Aabb{},
-        [&](const tbb::blocked_range<std::size_t>& range, Aabb box) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const std::uint32_t prim = pieces ? refs[i].prim : std::uint32_t(i);
-                const Triangle& tri = scene_.triangles[i] = triangles_[prim];
-                scene_.bounds[i] = pieces ? refs[i].box : conservative_bounds(tri);
-                scene_.centroids[i] = pieces ? refs[i].box.center() : centroid(tri);
-                scene_.prims[i] = prim;
-                box.extend(scene_.bounds[i]);
+    constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+    struct Sums {
+        Aabb box;
+        std::size_t made = 0;  // references written
+    };
+    const Sums sums = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, triangles_.size(), 4096), Sums{},
+        [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
+            for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
+                const Triangle& tri = triangles_[prim];
+                if (!pieces) {
+                    scene_.triangles[prim] = tri;
+                    scene_.bounds[prim] = conservative_bounds(tri);
+                    scene_.centroids[prim] = centroid(tri);
+                    scene_.prims[prim] = std::uint32_t(prim);
+                    sum.box.extend(scene_.bounds[prim]);
+                    continue;
+                }
+                const std::size_t first = plan.first[prim], count = plan.first[prim + 1] - first;
+                const std::size_t made =
+                    count == 1
+                        ? (scene_.bounds[first] = conservative_bounds(tri), 1)
+                        : split_triangle(tri, plan.grid,
+                                         std::span<Aabb>(scene_.bounds.data() + first, count));
+                for (std::size_t i = first; i < first + count; ++i) {
+                    scene_.triangles[i] = tri;
+                    scene_.prims[i] = i < first + made ? std::uint32_t(prim) : kUnused;
+                    if (i >= first + made) continue;
+                    scene_.centroids[i] = scene_.bounds[i].center();
+                    sum.box.extend(scene_.bounds[i]);
+                }
+                sum.made += made;
             }
-            return box;
+            return sum;
         },
-        [](Aabb a, const Aabb& b) {
-            a.extend(b);
+        [](Sums a, const Sums& b) {
+            a.box.extend(b.box);
+            a.made += b.made;
             return a;
         });
+    scene_.box = sums.box;
+    if (pieces && sums.made < n) {  // a piece that could not be cut left slots unused
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (scene_.prims[i] == kUnused) continue;
+            scene_.triangles[kept] = scene_.triangles[i];
+            scene_.bounds[kept] = scene_.bounds[i];
+            scene_.centroids[kept] = scene_.centroids[i];
+            scene_.prims[kept++] = scene_.prims[i];
+        }
+        scene_.triangles.resize(kept);
+        scene_.bounds.resize(kept);
+        scene_.centroids.resize(kept);
+        scene_.prims.resize(kept);
+    }
 }
 
 std::size_t EdacrtTracer::working_bytes() const {

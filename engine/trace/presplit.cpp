@@ -32,7 +32,6 @@ float conservative_padding(const Aabb& exact) {
     return std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
 }
 
-constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kMaxPieces = 1u << 16;  // per triangle
 constexpr int kGridLevels = 30;                 // below this, split at the middle
 // Only a triangle whose box's surface area is at least this many times the mean is cut. Pieces
@@ -56,39 +55,51 @@ struct Box {
     }
 };
 
-/// The box of the triangle's part inside `region` (Sutherland-Hodgman against its six planes).
-Box clip(const Triangle& tri, const Box& region) {
-    std::array<glm::dvec3, 9> polygon{glm::dvec3(tri.p0), glm::dvec3(tri.p1), glm::dvec3(tri.p2)};
-    std::array<glm::dvec3, 9> next;
-    std::size_t size = 3;
-    for (int axis = 0; axis < 3 && size > 0; ++axis) {
-        for (const int side : {0, 1}) {  // keep x >= lo, then x <= hi
-            const double plane = side == 0 ? region.lo[axis] : region.hi[axis];
-            const auto inside = [&](const glm::dvec3& p) {
-                return side == 0 ? p[axis] >= plane : p[axis] <= plane;
-            };
-            std::size_t kept = 0;
-            for (std::size_t i = 0; i < size; ++i) {
-                const glm::dvec3& a = polygon[i];
-                const glm::dvec3& b = polygon[(i + 1) % size];
-                if (inside(a)) next[kept++] = a;
-                if (inside(a) != inside(b)) {  // the edge crosses the plane: add the crossing
-                    glm::dvec3 p = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
-                    p[axis] = plane;
-                    next[kept++] = p;
-                }
-            }
-            assert(kept <= polygon.size());
-            polygon = next;
-            size = kept;
+/// A convex polygon in double: a triangle's part inside a box (at most 9 corners; room for
+/// rounding to add a few).
+struct Polygon {
+    std::array<glm::dvec3, 16> corners;
+    std::size_t size = 0;
+
+    Box box() const {
+        Box b;
+        for (std::size_t i = 0; i < size; ++i) {
+            b.lo = glm::min(b.lo, corners[i]);
+            b.hi = glm::max(b.hi, corners[i]);
+        }
+        return b;
+    }
+};
+
+Polygon corners(const Triangle& tri) {
+    Polygon polygon;
+    polygon.corners[0] = glm::dvec3(tri.p0);
+    polygon.corners[1] = glm::dvec3(tri.p1);
+    polygon.corners[2] = glm::dvec3(tri.p2);
+    polygon.size = 3;
+    return polygon;
+}
+
+/// Cuts `polygon` by the plane x[axis] = plane into its parts below and above it (one
+/// Sutherland-Hodgman step for each side; a crossing is put exactly on the plane, and a corner
+/// on the plane belongs to both). False when a part would not fit (it then stays whole).
+bool cut(const Polygon& polygon, int axis, double plane, Polygon& below, Polygon& above) {
+    below.size = above.size = 0;
+    const std::size_t room = polygon.corners.size() - 1;
+    for (std::size_t i = 0; i < polygon.size; ++i) {
+        const glm::dvec3& a = polygon.corners[i];
+        const glm::dvec3& b = polygon.corners[(i + 1) % polygon.size];
+        if (below.size >= room || above.size >= room) return false;
+        if (a[axis] <= plane) below.corners[below.size++] = a;
+        if (a[axis] >= plane) above.corners[above.size++] = a;
+        if ((a[axis] < plane && b[axis] > plane) || (a[axis] > plane && b[axis] < plane)) {
+            glm::dvec3 p = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
+            p[axis] = plane;
+            below.corners[below.size++] = p;
+            above.corners[above.size++] = p;
         }
     }
-    Box box;
-    for (std::size_t i = 0; i < size; ++i) {
-        box.lo = glm::min(box.lo, polygon[i]);
-        box.hi = glm::max(box.hi, polygon[i]);
-    }
-    return box;
+    return true;
 }
 
 /// Rounds outwards to float (the double box stays inside) and pads like conservative_bounds.
@@ -106,53 +117,49 @@ Aabb widen(const Box& box, float pad) {
 
 Box to_double(const Aabb& box) { return {glm::dvec3(box.lo), glm::dvec3(box.hi)}; }
 
-/// Cuts one triangle into `pieces` references (fewer if it cannot be cut further; the unused
-/// slots keep prim = kUnused).
+/// Cuts one triangle into pieces (see split_triangle).
 class Splitter {
   public:
-    Splitter(const Box& scene) : scene_(scene) {}
+    explicit Splitter(const Box& scene) : scene_(scene) {}
 
-    void split(const Triangle& tri, std::uint32_t prim, std::uint32_t pieces,
-               std::span<PrimReference> out) const {
-        const Aabb exact = exact_bounds(tri);
-        split(tri, prim, conservative_padding(exact), to_double(exact), to_double(exact), pieces,
-              out);
+    std::size_t split(const Triangle& tri, std::span<Aabb> out) const {
+        const Polygon polygon = corners(tri);
+        return split(conservative_padding(exact_bounds(tri)), polygon, polygon.box(), out);
     }
 
   private:
-    void split(const Triangle& tri, std::uint32_t prim, float pad, const Box& region,
-               const Box& piece, std::uint32_t pieces, std::span<PrimReference> out) const {
-        const glm::dvec3 extent = piece.hi - piece.lo;
+    /// `piece` is the part of the triangle inside the cuts so far, `box` its box; it gets
+    /// out.size() pieces.
+    std::size_t split(float pad, const Polygon& piece, const Box& box, std::span<Aabb> out) const {
+        const glm::dvec3 extent = box.hi - box.lo;
         const int axis =
             extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
-        if (pieces == 1 || !(extent[axis] > 0.0)) {
-            out[0] = {widen(piece, pad), prim};
-            return;
+        Polygon below, above;
+        if (out.size() == 1 || !(extent[axis] > 0.0) ||
+            !cut(piece, axis, grid_plane(axis, box.lo[axis], box.hi[axis]), below, above) ||
+            below.size < 3 || above.size < 3) {  // (rounding in the cut: keep the piece whole)
+            out[0] = widen(box, pad);
+            return 1;
         }
-        const double plane = grid_plane(axis, piece.lo[axis], piece.hi[axis]);
-        Box left_region = region, right_region = region;
-        left_region.hi[axis] = plane;
-        right_region.lo[axis] = plane;
-        const Box left = clip(tri, left_region), right = clip(tri, right_region);
-        if (left.empty() || right.empty()) {  // rounding in the clip: keep the piece whole
-            out[0] = {widen(piece, pad), prim};
-            return;
-        }
+        const Box left = below.box(), right = above.box();
         const double left_area = left.surface_area(), total = left_area + right.surface_area();
         const double share = total > 0.0 ? left_area / total : 0.5;
-        const std::uint32_t left_pieces =
-            std::clamp(std::uint32_t(std::lround(share * pieces)), 1u, pieces - 1);
-        split(tri, prim, pad, left_region, left, left_pieces, out.first(left_pieces));
-        split(tri, prim, pad, right_region, right, pieces - left_pieces, out.subspan(left_pieces));
+        const std::size_t pieces = out.size();
+        const std::size_t left_pieces = std::clamp(std::size_t(std::lround(share * double(pieces))),
+                                                   std::size_t(1), pieces - 1);
+        const std::size_t made = split(pad, below, left, out.first(left_pieces));
+        // The right half's pieces follow the left half's without a gap.
+        return made + split(pad, above, right, out.subspan(made, pieces - left_pieces));
     }
 
     /// The coarsest plane of the grid over the scene box (cells of 1/2^level of its extent)
     /// strictly between lo and hi, so that pieces of neighbouring triangles line up with the
     /// top-down build's splits; the middle when none is that coarse.
     double grid_plane(int axis, double lo, double hi) const {
-        const double origin = scene_.lo[axis], extent = scene_.hi[axis] - origin;
+        const double origin = scene_.lo[axis];
+        double cell = scene_.hi[axis] - origin;
         for (int level = 1; level <= kGridLevels; ++level) {
-            const double cell = std::ldexp(extent, -level);
+            cell *= 0.5;  // extent / 2^level, exactly
             const double plane = origin + (std::floor((lo - origin) / cell) + 1.0) * cell;
             if (plane > lo && plane < hi) return plane;
         }
@@ -202,13 +209,7 @@ std::vector<std::uint32_t> piece_counts(std::span<const double> areas, std::size
 
 }  // namespace
 
-Aabb clipped_bounds(const Triangle& tri, const Aabb& region) {
-    const Box piece = clip(tri, to_double(region));
-    if (piece.empty()) return {};
-    return widen(piece, conservative_padding(exact_bounds(tri)));
-}
-
-FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra) {
+PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra) {
     const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(triangles.size()));
     if (budget == 0) return {};
     std::vector<double> areas(triangles.size());
@@ -216,53 +217,45 @@ FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangl
     // same sum, so the same pieces, for any thread count).
     struct Sums {
         double total = 0.0, largest = 0.0;
-        Box scene;
+        Aabb scene;
     };
     const Sums sums = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), Sums{},
         [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const Box box = to_double(exact_bounds(triangles[i]));
-                const double area = box.surface_area();
+                const Aabb box = exact_bounds(triangles[i]);
+                // Float corners: the extents are exact in double.
+                const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
+                const double area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
                 areas[i] = std::isfinite(area) ? area : 0.0;  // (loaders refuse such corners)
                 sum.total += areas[i];
                 sum.largest = std::max(sum.largest, areas[i]);
-                sum.scene.lo = glm::min(sum.scene.lo, box.lo);
-                sum.scene.hi = glm::max(sum.scene.hi, box.hi);
+                sum.scene.extend(box);
             }
             return sum;
         },
         [](Sums a, const Sums& b) {
             a.total += b.total;
             a.largest = std::max(a.largest, b.largest);
-            a.scene.lo = glm::min(a.scene.lo, b.scene.lo);
-            a.scene.hi = glm::max(a.scene.hi, b.scene.hi);
+            a.scene.extend(b.scene);
             return a;
         });
     const double min_area = kMinSplitArea * sums.total / double(triangles.size());
     // A mesh of alike triangles has none to cut: no need to share out the budget.
     if (!(sums.largest >= min_area)) return {};
-    const Box& scene = sums.scene;
     const std::vector<std::uint32_t> counts = piece_counts(areas, budget, min_area);
-    if (std::all_of(counts.begin(), counts.end(), [](std::uint32_t c) { return c == 1; }))
-        return {};  // nothing to cut: the caller uses the triangles themselves
-    std::vector<std::size_t> offsets(triangles.size() + 1, 0);
-    for (std::size_t i = 0; i < triangles.size(); ++i) offsets[i + 1] = offsets[i] + counts[i];
-    FrameVector<PrimReference> references(offsets.back(), PrimReference{Aabb{}, kUnused});
-    const Splitter splitter(scene);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 1024),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                              const std::span<PrimReference> out(references.data() + offsets[i],
-                                                                 counts[i]);
-                              if (counts[i] == 1)
-                                  out[0] = {conservative_bounds(triangles[i]), std::uint32_t(i)};
-                              else
-                                  splitter.split(triangles[i], std::uint32_t(i), counts[i], out);
-                          }
-                      });
-    std::erase_if(references, [](const PrimReference& r) { return r.prim == kUnused; });
-    return references;
+    PresplitPlan plan;
+    plan.first.resize(triangles.size() + 1);
+    plan.first[0] = 0;
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        plan.first[i + 1] = plan.first[i] + counts[i];
+    if (plan.first.back() == triangles.size()) return {};  // nothing to cut
+    plan.grid = sums.scene;
+    return plan;
+}
+
+std::size_t split_triangle(const Triangle& tri, const Aabb& grid, std::span<Aabb> out) {
+    return Splitter(to_double(grid)).split(tri, out);
 }
 
 }  // namespace edacrt

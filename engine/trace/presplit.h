@@ -4,32 +4,28 @@
 // Construction of High-Quality Bounding Volume Hierarchies", 2013, Section 5).
 #include <cstdint>
 #include <span>
-#include <vector>
 
 #include "geometry/triangle.h"
 #include "util/frame_memory.h"
 
 namespace edacrt {
 
-/// A triangle's box, or the box of one of its pieces.
-struct PrimReference {
-    Aabb box;
-    std::uint32_t prim = 0;
+/// How a frame's triangles are cut: each triangle whose box's surface area is at least twice
+/// the mean gets pieces in proportion to that area, at most `extra` times the triangle count in
+/// all (0: none). Triangle i has the references [first[i], first[i + 1]).
+struct PresplitPlan {
+    FrameVector<std::uint32_t> first;  // empty when no triangle is cut: use the triangles
+    Aabb grid;                         // the scene box, whose grid the cuts follow
 };
+/// Parallel; the same plan for any thread count.
+PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra);
 
-/// The box of the part of `tri` inside `region`, rounded outwards and padded like
-/// conservative_bounds(tri), so it holds every point of that part where the watertight test may
-/// accept a hit; clipped in double. Empty when the triangle misses the region.
-Aabb clipped_bounds(const Triangle& tri, const Aabb& region);
-
-/// References for the triangles: each triangle whose box's surface area is at least twice the
-/// mean gets pieces in proportion to that area, at most `extra` times the triangle count in all
-/// (0: one reference per triangle). A triangle
-/// with n pieces is cut recursively by the coarsest plane of a grid over the scene box that
-/// crosses its piece's longest axis, the pieces shared in proportion to the halves' areas. Every
-/// piece's box is clipped_bounds(), so the union covers conservative_bounds(tri). Empty when no
-/// triangle is cut (one reference per triangle: use the triangles). Parallel; the result is the
-/// same for any thread count.
-FrameVector<PrimReference> presplit_references(std::span<const Triangle> triangles, float extra);
+/// Cuts `tri` into out.size() pieces, recursively by the coarsest plane of a grid over
+/// plan.grid that crosses its piece's longest axis, the pieces shared in proportion to the
+/// halves' areas, and writes each piece's box: that of the part of `tri` inside the cuts, clipped
+/// in double, rounded outwards and padded like conservative_bounds(tri), so it holds every point
+/// of that part where the watertight test may accept a hit. The union covers
+/// conservative_bounds(tri). Returns how many it wrote: fewer when a piece cannot be cut.
+std::size_t split_triangle(const Triangle& tri, const Aabb& grid, std::span<Aabb> out);
 
 }  // namespace edacrt

@@ -300,11 +300,12 @@ TEST(SimdKernels, LeafKernelsFindTheScalarLoopsHitsInBothShapes) {
             for (int round = 0; round < 30; ++round) {
                 std::vector<Triangle> triangles(tri_count);
                 for (Triangle& tri : triangles) tri = awkward_triangle(rng);
-                // The leaf lists the frame's triangles in an order of its own.
+                // The leaf lists the frame's triangles in an order of its own, and they are
+                // the scene's in another.
                 std::vector<std::uint32_t> tris(tri_count), prims(tri_count);
                 for (std::size_t k = 0; k < tri_count; ++k) {
                     tris[k] = std::uint32_t(tri_count - 1 - k);
-                    prims[k] = std::uint32_t(100 + k);
+                    prims[k] = std::uint32_t((k + 3) % tri_count);
                 }
                 const LeafTriangles leaf{tris.data(), tri_count, triangles.data(), prims.data()};
                 // Rays mostly aimed at a triangle's corner, edge or inside; some finished.

@@ -37,9 +37,10 @@
 
 namespace edacrt {
 
-/// Per-frame triangle data, in scene order.
+/// Per-frame triangle data: one entry per triangle in scene order, or per piece of a pre-split
+/// triangle (a piece intersects as its whole scene triangle, triangles[prims[i]]).
 struct EdacrtScene {
-    FrameVector<Triangle> triangles;
+    const Triangle* triangles = nullptr;  // the scene's
     FrameVector<Aabb> bounds;
     FrameVector<glm::vec3> centroids;
     FrameVector<std::uint32_t> prims;  // the scene triangle of each (the pieces of pre-split ones)
@@ -236,7 +237,7 @@ class Recursion {
     /// The calling thread's scratch, sized for this recursion.
     RecursionScratch& scratch() {
         RecursionScratch& s = scratches_.local();
-        s.reserve(p_.bins, scene_.triangles.size());
+        s.reserve(p_.bins, scene_.prims.size());
         return s;
     }
 
@@ -449,8 +450,7 @@ class Recursion {
     void leaf(const Node& node, typename Observer::Visit& visit) {
         [[maybe_unused]] auto timer = obs_.time(Phase::leaves, node.depth);
         LeafScratch& sc = scratch().leaf;
-        const LeafTriangles tris{node.tris, node.tri_count, scene_.triangles.data(),
-                                 scene_.prims.data()};
+        const LeafTriangles tris{node.tris, node.tri_count, scene_.triangles, scene_.prims.data()};
         const std::size_t groups = (node.ray_count + 7) / 8, blocks = (node.tri_count + 7) / 8;
         const bool by_groups = groups * node.tri_count <= node.ray_count * blocks;
         if (by_groups)

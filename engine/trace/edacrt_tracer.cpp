@@ -36,14 +36,15 @@ UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
 
 void EdacrtTracer::prepare_triangles() {
     // Per frame (update_scene() of an animation): in parallel, into the storage of the last
-    // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece keeps its
-    // whole triangle for the intersection and is binned by its clipped box's centre.
+    // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece is binned
+    // by its clipped box's centre and intersects as its whole triangle (read through prims, not
+    // copied: a copy per reference was a third of this pass's writes).
     const PresplitPlan plan = params_.presplit != 0.0f && !triangles_.empty()
                                   ? plan_presplit(triangles_, params_.presplit)
                                   : PresplitPlan{};
     const bool pieces = !plan.first.empty();  // empty: no triangle is cut
     const std::size_t n = pieces ? plan.first.back() : triangles_.size();
-    scene_.triangles.resize(n);
+    scene_.triangles = triangles_.data();
     scene_.bounds.resize(n);
     scene_.centroids.resize(n);
     scene_.prims.resize(n);
@@ -58,7 +59,6 @@ void EdacrtTracer::prepare_triangles() {
             for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
                 const Triangle& tri = triangles_[prim];
                 if (!pieces) {
-                    scene_.triangles[prim] = tri;
                     scene_.bounds[prim] = conservative_bounds(tri);
                     scene_.centroids[prim] = centroid(tri);
                     scene_.prims[prim] = std::uint32_t(prim);
@@ -72,7 +72,6 @@ void EdacrtTracer::prepare_triangles() {
                         : split_triangle(tri, plan.grid,
                                          std::span<Aabb>(scene_.bounds.data() + first, count));
                 for (std::size_t i = first; i < first + count; ++i) {
-                    scene_.triangles[i] = tri;
                     scene_.prims[i] = i < first + made ? std::uint32_t(prim) : kUnused;
                     if (i >= first + made) continue;
                     scene_.centroids[i] = scene_.bounds[i].center();
@@ -92,12 +91,10 @@ void EdacrtTracer::prepare_triangles() {
         std::size_t kept = 0;
         for (std::size_t i = 0; i < n; ++i) {
             if (scene_.prims[i] == kUnused) continue;
-            scene_.triangles[kept] = scene_.triangles[i];
             scene_.bounds[kept] = scene_.bounds[i];
             scene_.centroids[kept] = scene_.centroids[i];
             scene_.prims[kept++] = scene_.prims[i];
         }
-        scene_.triangles.resize(kept);
         scene_.bounds.resize(kept);
         scene_.centroids.resize(kept);
         scene_.prims.resize(kept);
@@ -106,9 +103,8 @@ void EdacrtTracer::prepare_triangles() {
 
 std::size_t EdacrtTracer::working_bytes() const {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(triangles_) + bytes(scene_.triangles) + bytes(scene_.bounds) +
-           bytes(scene_.centroids) + bytes(scene_.prims) + batch_.rays.bytes() +
-           bytes(batch_.tris) + scratch_bytes();
+    return bytes(triangles_) + bytes(scene_.bounds) + bytes(scene_.centroids) +
+           bytes(scene_.prims) + batch_.rays.bytes() + bytes(batch_.tris) + scratch_bytes();
 }
 
 std::size_t EdacrtTracer::scratch_bytes() const {
@@ -130,7 +126,7 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
 template <Query Q>
 TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hits,
                                     TraceDetail* detail) {
-    const std::size_t n = rays.size(), triangles = scene_.triangles.size();
+    const std::size_t n = rays.size(), triangles = scene_.prims.size();
     batch_.tris.resize(triangles);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
         std::fill(hits.begin() + range.begin(), hits.begin() + range.end(), Hit{});

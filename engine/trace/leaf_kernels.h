@@ -22,15 +22,15 @@
 
 namespace edacrt {
 
-/// A leaf's triangles: tris[0 .. count) index the frame's triangles and their scene triangles
-/// (prims; the pieces of a pre-split triangle share theirs).
+/// A leaf's triangles: tris[0 .. count) index the frame's triangles, whose scene triangles are
+/// prims (the pieces of a pre-split triangle share theirs), indices into `triangles`.
 struct LeafTriangles {
     const std::uint32_t* tris;
     std::size_t count;
     const Triangle* triangles;
     const std::uint32_t* prims;
 
-    const Triangle& triangle(std::size_t k) const { return triangles[tris[k]]; }
+    const Triangle& triangle(std::size_t k) const { return triangles[prims[tris[k]]]; }
     std::int32_t prim(std::size_t k) const { return std::int32_t(prims[tris[k]]); }
 };
 

@@ -169,42 +169,32 @@ class Splitter {
     Box scene_;
 };
 
-/// Pieces per triangle: 1 + floor(scale * area), the scale the largest (found by bisection)
-/// that keeps the extra pieces within the budget and gives none to a box smaller than
-/// `min_area`. Only boxes of at least `min_area` can get pieces, so the bisection counts over
-/// those alone.
-std::vector<std::uint32_t> piece_counts(std::span<const double> areas, std::size_t budget,
+/// Extra pieces for the triangles that may be cut (box areas `areas`, each at least
+/// `min_area`): floor(scale * area), the scale the largest (found by bisection) that keeps the
+/// sum within the budget and gives none to a box smaller than `min_area`.
+std::vector<std::uint32_t> extra_pieces(std::span<const float> areas, std::size_t budget,
                                         double min_area) {
-    std::vector<std::uint32_t> counts(areas.size(), 1);
-    std::vector<std::uint32_t> large;  // the triangles that may be cut
-    double largest = 0.0;
-    for (std::size_t i = 0; i < areas.size(); ++i) {
-        largest = std::max(largest, areas[i]);
-        if (areas[i] >= min_area && areas[i] > 0.0) large.push_back(std::uint32_t(i));
-    }
-    if (!(largest > 0.0) || budget == 0 || large.empty()) return counts;
-    const auto pieces = [&](double scale, std::size_t i) {
-        const double extra = std::floor(scale * areas[i]);
-        return 1u + std::uint32_t(std::min(extra, double(kMaxPieces - 1)));
+    const auto extra = [](double scale, float area) {
+        return std::min(std::floor(scale * double(area)), double(kMaxPieces - 1));
     };
-    const auto extra_pieces = [&](double scale) {
-        std::size_t sum = 0;
-        for (const std::uint32_t i : large) sum += pieces(scale, i) - 1;
+    const auto total = [&](double scale) {
+        double sum = 0.0;  // exact: a sum of integers below 2^53
+        for (const float area : areas) sum += extra(scale, area);
         return sum;
     };
-    // At scale 1 / min_area a box of min_area gets its first extra piece. (Where the bisection
-    // tries a larger scale, the count over `large` already exceeds the budget at 1 / min_area,
-    // as the count over all would: the same decisions.)
+    const double largest = *std::max_element(areas.begin(), areas.end());
+    // At scale 1 / min_area a box of min_area gets its first extra piece.
     double lo = 0.0, hi = double(budget + 1) / largest;  // hi gives the largest alone > budget
-    if (min_area > 0.0 && 1.0 / min_area < hi && extra_pieces(1.0 / min_area) <= budget)
+    if (1.0 / min_area < hi && total(1.0 / min_area) <= double(budget))
         lo = 1.0 / min_area;
     else
         for (int iteration = 0; iteration < 40; ++iteration) {
             const double mid = 0.5 * (lo + hi);
-            (extra_pieces(mid) <= budget ? lo : hi) = mid;
+            (total(mid) <= double(budget) ? lo : hi) = mid;
         }
-    for (const std::uint32_t i : large) counts[i] = pieces(lo, i);
-    return counts;
+    std::vector<std::uint32_t> pieces(areas.size());
+    for (std::size_t i = 0; i < areas.size(); ++i) pieces[i] = std::uint32_t(extra(lo, areas[i]));
+    return pieces;
 }
 
 }  // namespace
@@ -212,44 +202,56 @@ std::vector<std::uint32_t> piece_counts(std::span<const double> areas, std::size
 PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra) {
     const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(triangles.size()));
     if (budget == 0) return {};
-    std::vector<double> areas(triangles.size());
-    // One parallel pass: the areas, their sum and largest, and the scene box (deterministic: the
-    // same sum, so the same pieces, for any thread count).
+    // One parallel pass over fixed blocks: the box areas, their sum and the scene box (the same
+    // sum, so the same pieces, for any thread count).
     struct Sums {
-        double total = 0.0, largest = 0.0;
+        double total = 0.0;
         Aabb scene;
     };
-    const Sums sums = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<std::size_t>(0, triangles.size(), 4096), Sums{},
-        [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const Aabb box = exact_bounds(triangles[i]);
-                // Float corners: the extents are exact in double.
-                const glm::dvec3 e = glm::dvec3(box.hi) - glm::dvec3(box.lo);
-                const double area = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
-                areas[i] = std::isfinite(area) ? area : 0.0;  // (loaders refuse such corners)
-                sum.total += areas[i];
-                sum.largest = std::max(sum.largest, areas[i]);
-                sum.scene.extend(box);
-            }
-            return sum;
-        },
-        [](Sums a, const Sums& b) {
-            a.total += b.total;
-            a.largest = std::max(a.largest, b.largest);
-            a.scene.extend(b.scene);
-            return a;
-        });
+    constexpr std::size_t kBlock = 4096;
+    std::vector<float> areas(triangles.size());
+    std::vector<Sums> blocks((triangles.size() + kBlock - 1) / kBlock);
+    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t block) {
+        Sums sum;
+        const std::size_t end = std::min(triangles.size(), (block + 1) * kBlock);
+        for (std::size_t i = block * kBlock; i < end; ++i) {
+            const Triangle& tri = triangles[i];
+            const glm::vec3 lo = glm::min(glm::min(tri.p0, tri.p1), tri.p2);
+            const glm::vec3 hi = glm::max(glm::max(tri.p0, tri.p1), tri.p2);
+            const glm::vec3 e = hi - lo;
+            const float area = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+            areas[i] = area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
+            sum.total += double(areas[i]);
+            sum.scene.lo = glm::min(sum.scene.lo, lo);
+            sum.scene.hi = glm::max(sum.scene.hi, hi);
+        }
+        blocks[block] = sum;
+    });
+    Sums sums;
+    for (const Sums& block : blocks) {
+        sums.total += block.total;
+        sums.scene.extend(block.scene);
+    }
     const double min_area = kMinSplitArea * sums.total / double(triangles.size());
+    std::vector<std::uint32_t> large;  // the triangles that may be cut
+    std::vector<float> large_areas;
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+        if (areas[i] >= min_area && areas[i] > 0.0f) {
+            large.push_back(std::uint32_t(i));
+            large_areas.push_back(areas[i]);
+        }
     // A mesh of alike triangles has none to cut: no need to share out the budget.
-    if (!(sums.largest >= min_area)) return {};
-    const std::vector<std::uint32_t> counts = piece_counts(areas, budget, min_area);
+    if (large.empty()) return {};
+    const std::vector<std::uint32_t> extra_counts = extra_pieces(large_areas, budget, min_area);
+    if (std::all_of(extra_counts.begin(), extra_counts.end(), [](auto n) { return n == 0; }))
+        return {};  // nothing to cut
     PresplitPlan plan;
     plan.first.resize(triangles.size() + 1);
     plan.first[0] = 0;
-    for (std::size_t i = 0; i < triangles.size(); ++i)
-        plan.first[i + 1] = plan.first[i] + counts[i];
-    if (plan.first.back() == triangles.size()) return {};  // nothing to cut
+    for (std::size_t i = 0, k = 0; i < triangles.size(); ++i) {
+        const std::uint32_t extra = k < large.size() && large[k] == i ? extra_counts[k++] : 0;
+        plan.first[i + 1] = plan.first[i] + 1 + extra;
+    }
     plan.grid = sums.scene;
     return plan;
 }

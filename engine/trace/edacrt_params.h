@@ -112,7 +112,7 @@ struct EdacrtParams {
     Binning binning = Binning::node_box;
     SecondChild second_child = SecondChild::split;
     FarChild far_child = FarChild::paper;
-    float presplit = 0.3f;   // extra triangle pieces per triangle (not in the paper; 0: off)
+    float presplit = 0.1f;   // extra triangle pieces per triangle (not in the paper; 0: off)
     std::uint32_t seed = 1;  // of the per-node ray sampling
 
     bool operator==(const EdacrtParams&) const = default;

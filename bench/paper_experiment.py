@@ -417,7 +417,7 @@ def markdown(args, results, figure):
         "triangles) against DACRT as Mora 2011 and Afra 2012 define it: `--method dacrt "
         "--presplit 0 --second-child after-first`. The paper's own K, leaf thresholds and cost "
         "constants are not in the report the project started from; both sides use ours (K = 8, "
-        "16 rays or 16 triangles per leaf, C_T = 2, C_I = C_bv = 1).",
+        "16 rays or 8 triangles per leaf, C_T = 2, C_I = C_bv = 1).",
         "",
         f"![speed-up against samples per pixel](figures/{figure.name})",
         "",

@@ -35,14 +35,14 @@ CONFIRM_REPEAT = 9  # frames of the head-to-head run that confirms a better vari
 # change a decision under the defaults (C_T and C_I cancel in the argmin without cost leaves;
 # C_child needs filter-skip=triangles) are not swept.
 VARIANTS = {
-    "edacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=8",
-               "leaf-tris=32", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
+    "edacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=4",
+               "leaf-tris=16", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
                "binning=centroids", "small-nodes=scaled", "small-nodes=capped",
                "small-nodes=every-ray", "small-nodes=surface-area", "sample-min=8",
                "sample-min=32", "sample-count=50", "sample-threshold=300", "far-child=unstopped",
                "cost-leaf-max-tris=64", "filter-skip=triangles", "c-bv=0.5", "c-bv=2"],
-    "dacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=8",
-              "leaf-tris=32", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
+    "dacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=4",
+              "leaf-tris=16", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
               "binning=centroids", "cost-leaf-max-tris=64"],
     "bvh": ["bins=4", "bins=16", "max-leaf=4", "max-leaf=16", "c-t=0.5", "c-t=2"],
 }

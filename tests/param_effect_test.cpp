@@ -61,7 +61,8 @@ TEST(ParamNoEffect, EachParameterUnderTheSwitchesThatDecideIt) {
               (Keys{"c-t", "c-child"}));
     // The cost leaf takes C_T and C_I, if it reaches above the count leaf.
     EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = 64; }), 4), (Keys{"c-child"}));
-    EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = 16; }), 4), (Keys{"c-t", "c-child"}));
+    EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = p.leaf_tris; }), 4),
+              (Keys{"c-t", "c-child"}));
     // filter-skip=triangles prices by C_child, not C_I.
     EXPECT_EQ(inert(with([](auto& p) { p.filter_skip = FilterSkip::triangles; }), 4),
               (Keys{"c-t", "c-i"}));

@@ -207,7 +207,10 @@ void run(const AccuracyOptions& o) {
     if (o.skip_naive) std::erase(methods, std::string(enum_name(kMethods, Method::naive)));
     if (methods.empty()) throw InputError("no method left to measure (--skip-naive removed naive)");
     for (const std::string& name : methods) parse_enum_or_throw(kMethods, name);  // before any work
+    const std::vector<NamedPath> outputs = {{"--stats", o.common.stats_path}};
+    check_distinct_files(outputs, {{"--scene", o.common.scene}});
     const Scene scene = load_scene_verbose(o.common.scene);
+    check_outputs_spare_scene(outputs, scene);
     if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
     const Camera camera = choose_camera(scene, CameraOptions{});
     const FrameVector<Triangle> triangles = gather_triangles(scene);

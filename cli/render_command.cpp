@@ -85,8 +85,15 @@ void run(RenderOptions o) {
     take_animation_file(o.common.scene, o.animation);
     const auto threads = apply_thread_limit(o.common);
     image_format(o.out);  // an unknown extension is refused before any work
-    check_distinct_files({{"--out", o.out}, {"--stats", o.common.stats_path}},
-                         {{"--reference", o.reference}});
+    // An animation (animation_options.h) renders each frame to its own file; a still scene
+    // is one frame at t = 0.
+    const std::vector<FrameJob> frames = frame_jobs(o.animation, o.out);
+    std::vector<NamedPath> outputs;
+    for (const FrameJob& frame : frames) outputs.push_back({"--out", frame.out});
+    outputs.push_back({"--stats", o.common.stats_path});
+    check_distinct_files(outputs, {{"--reference", o.reference},
+                                   {"--scene", o.common.scene},
+                                   {"--animate", o.animation.animate}});
     RenderSettings settings = o.settings;
     if (!o.time_budget_only())
         settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
@@ -105,15 +112,13 @@ void run(RenderOptions o) {
         throw InputError(o.reference + ": the reference is " + std::to_string(reference->width) +
                          "x" + std::to_string(reference->height) + ", the render " +
                          std::to_string(settings.width) + "x" + std::to_string(settings.height));
-    // An animation (animation_options.h) renders each frame to its own file; a still scene
-    // is one frame at t = 0.
-    const std::vector<FrameJob> frames = frame_jobs(o.animation, o.out);
     if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
         throw InputError("--reference and --stats are for one image: give --time, not --frames");
     // Where the images and statistics go is checked before the render, not after it.
     for (const FrameJob& frame : frames) create_parent_folders(frame.out);
     check_writable(o.common.stats_path, "--stats");
     AnimatedScene animated = load_animated_verbose(o.common.scene, o.animation);
+    check_outputs_spare_scene(outputs, animated.scene);
     const Camera camera = choose_camera(animated.scene, o.camera);
     Renderer renderer(animated.scene, *tracer, camera, settings);
     for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";

@@ -94,8 +94,9 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
     const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-    if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
-    if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+    if (forward != 0 || right != 0 || up != 0)
+        change_camera(s, [&] { s.camera.fly(forward, right, up, dt); });
+    if (ImGui::IsKeyPressed(GLFW_KEY_R)) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
     if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s
         if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_play(s);
         if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) seek(s, s.playback.time - 1.0 / 24);
@@ -280,10 +281,13 @@ int run_viewer(const ViewerOptions& options) {
                 const auto drag = [&](ImGuiMouseButton b) {
                     return ImGui::IsMouseDragging(b) && in_image(io.MouseClickedPos[b]);
                 };
-                if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
-                if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
-                    s.camera.pan(d.x, d.y, image.h);
-                if (io.MouseWheel != 0.0f && in_image(io.MousePos)) s.camera.zoom(io.MouseWheel);
+                change_camera(s, [&] {
+                    if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
+                    if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
+                        s.camera.pan(d.x, d.y, image.h);
+                    if (io.MouseWheel != 0.0f && in_image(io.MousePos))
+                        s.camera.zoom(io.MouseWheel);
+                });
             }
             handle_keys(s, dt, quit);
 

@@ -25,6 +25,7 @@
 #include "command_line.h"
 #include "display.h"
 #include "panels/panels.h"
+#include "parse_command_line.h"
 #include "render/camera_options.h"
 #include "render/default_camera.h"
 #include "render/film.h"
@@ -136,9 +137,9 @@ int run_viewer(const ViewerOptions& options) {
             throw InputError("--shutter must be a number of seconds from 0 to 1000");
         check_setting("speed", options.speed);
         if (!std::isfinite(options.time)) throw InputError("--time must be finite");
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // a flag's value: a usage error
         std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
-        return 1;
+        return flags::kExitUsageError;
     }
     s.playback.motion_blur = options.shutter > 0.0;
     if (options.shutter > 0.0) s.playback.shutter = float(options.shutter);
@@ -158,7 +159,7 @@ int run_viewer(const ViewerOptions& options) {
     } else if (!options.animate.empty() || options.play || options.time != 0.0) {
         std::cerr << "edacrt_viewer: error: --time and --play need an animated scene "
                      "(--animate, or an animation file)\n";
-        return 1;
+        return flags::kExitUsageError;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
     if (!s.bookmarks_path.empty()) {

@@ -349,9 +349,13 @@ std::string rays_file(const BenchOptions& o, const BenchScene& scene, const RayS
 }  // namespace
 
 void run_bench(const BenchOptions& o) {
-    if (o.dynamic) validate_animation(o);
-    const std::vector<Variant> variants = make_variants(o.methods, o.dynamic);
-    const std::vector<RaySet> sets = make_sets(o);
+    std::vector<Variant> variants;
+    std::vector<RaySet> sets;
+    check_flags([&] {
+        if (o.dynamic) validate_animation(o);
+        variants = make_variants(o.methods, o.dynamic);
+        sets = make_sets(o);
+    });
     const std::vector<BenchScene> scenes = bench_scenes(o);
     if (scenes.empty()) throw InputError("no scene to measure (all were skipped)");
     // The ray files' names are known up front: no report may share one, nor any a scene file.

@@ -148,6 +148,16 @@ void check_outputs_spare_scene(const std::vector<NamedPath>& outputs, const Scen
     check_distinct_files(outputs, inputs);
 }
 
+void check_flags(const std::function<void()>& checks) {
+    try {
+        checks();
+    } catch (const UsageError&) {
+        throw;
+    } catch (const InputError& e) {
+        throw UsageError(e.what());
+    }
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

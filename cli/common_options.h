@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -63,6 +64,11 @@ void check_distinct_files(const std::vector<NamedPath>& outputs,
 /// libraries, the meshes of an animation file, key frames: Scene::inputs), once it is loaded
 /// and before anything is rendered or written.
 void check_outputs_spare_scene(const std::vector<NamedPath>& outputs, const Scene& scene);
+
+/// Runs the checks of flag values and combinations: an InputError they throw becomes a
+/// UsageError (exit status 2), as the engine's validators (validate(RenderSettings), ...)
+/// serve files and flags alike.
+void check_flags(const std::function<void()>& checks);
 
 /// Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);

@@ -6,6 +6,7 @@
 
 #include "camera_flags.h"
 #include "commands.h"
+#include "common_options.h"
 #include "enum_flags.h"
 #include "render/default_camera.h"
 #include "render/image_format.h"
@@ -42,7 +43,7 @@ std::string format_bytes(std::uint64_t bytes) {
 }
 
 /// Everything reported, as JSON; the text form is printed from it.
-nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
+nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, const Scene& scene) {
     const SceneSummary s = summarize_scene(scene);
     nlohmann::json materials = nlohmann::json::array();
     for (const MaterialSummary& m : s.materials) {
@@ -61,9 +62,6 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
                              : is_interior(scene) ? "inside the interior, above the floor"
                                                   : "framing the bounds from +z";
 
-    RenderSettings settings = o.settings;
-    settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
-    validate(settings);
     // The renderer's state with a PNG written at the end, as `edacrt render` estimates it.
     const std::uint64_t renderer = render_memory_bytes(
         settings, sizeof(glm::vec3) + save_image_bytes_per_pixel(ImageFormat::png));
@@ -150,7 +148,12 @@ void print_text(const nlohmann::json& j) {
 }
 
 void run(const InfoOptions& o) {
-    const nlohmann::json info = describe(o, load_scene(o.scene));
+    RenderSettings settings = o.settings;
+    check_flags([&] {
+        settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+        validate(settings);
+    });
+    const nlohmann::json info = describe(o, settings, load_scene(o.scene));
     if (o.json)
         std::cout << json_text(info);
     else

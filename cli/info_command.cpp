@@ -12,6 +12,7 @@
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
+#include "scene/text_scan.h"
 #include "stats_json.h"
 #include "trace/tracer.h"
 #include "util/error.h"
@@ -124,9 +125,14 @@ void print_text(const nlohmann::json& j) {
     for (const auto& m : j["materials"]) {
         std::cout << "    " << text(m["name"]) << ": " << m["triangles"] << " triangles, "
                   << m["model"].get<std::string>() << "\n";
-        for (const auto& t : m["textures"])
-            std::cout << "      " << text(t["keyword"]) << " " << text(t["file"])
-                      << " (not rendered)\n";
+        // The first few of a material's textures, as warnings are capped (scene/text_scan.h).
+        const std::size_t shown = text_scan::WarningLimit::kWarningsPerKind;
+        for (std::size_t i = 0; i < std::min(shown, m["textures"].size()); ++i)
+            std::cout << "      " << text(m["textures"][i]["keyword"]) << " "
+                      << text(m["textures"][i]["file"]) << " (not rendered)\n";
+        if (m["textures"].size() > shown)
+            std::cout << "      ... and " << m["textures"].size() - shown
+                      << " more textures (not rendered)\n";
     }
     const auto& c = j["camera"];
     std::cout << "  camera       from " << c["from"].get<std::string>() << ": eye " << v3(c["eye"])

@@ -286,5 +286,22 @@ TEST(OutputSafety, BenchReportsMayNotNameAWrittenRayFile) {
     EXPECT_FALSE(fs::exists(dir.path() / "rays")) << "refused before any work";
 }
 
+// Under `ulimit -f` with SIGXFSZ at its default (kill), edacrt ignores the signal itself: the
+// write fails with EFBIG and is reported, the old file kept and no temporary left.
+TEST(OutputSafety, AFileSizeLimitIsReportedNotASilentKill) {
+    const TempDir dir;
+    const fs::path out = dir.write("old.png", kOld);
+    const auto result =
+        test::run_command("trap - XFSZ; ulimit -f 4; '" + test::cli_path().string() + "' " +
+                          kRender + "--integrator primary -q --out " + out.string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: " + out.string() + ": cannot write"),
+              std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find("File too large"), std::string::npos) << result.output;
+    EXPECT_EQ(bytes_of(out), kOld);
+    EXPECT_EQ(names_in(dir.path()), std::set<std::string>{"old.png"});
+}
+
 }  // namespace
 }  // namespace edacrt

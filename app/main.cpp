@@ -1,5 +1,6 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
+#include <csignal>
 
 #include "camera_flags.h"
 #include "enum_flags.h"
@@ -9,6 +10,8 @@
 #include "viewer_state.h"
 
 int main(int argc, char** argv) {
+    // Past `ulimit -f` a save fails with EFBIG and is reported, instead of SIGXFSZ killing us.
+    std::signal(SIGXFSZ, SIG_IGN);
     edacrt::app::ViewerOptions o;
     CLI::App app{"EDACRT Studio viewer: progressive rendering with divide-and-conquer ray tracing",
                  "edacrt_viewer"};

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <string>
+
+#include "util/error.h"
 
 namespace edacrt::app {
 namespace {
@@ -18,16 +21,32 @@ glm::vec3 any_perpendicular(glm::vec3 up) {
 
 }  // namespace
 
+void OrbitCamera::commit(const OrbitCamera& next, const char* what) {
+    try {
+        validate(next.camera());
+    } catch (const InputError& e) {
+        throw InputError(std::string(what) + " refused, the view is unchanged: " + e.what());
+    }
+    *this = next;
+}
+
 void OrbitCamera::reset(const Camera& camera) {
-    target_ = camera.look_at;
-    up_ = glm::normalize(camera.up);
-    vfov_degrees_ = camera.vfov_degrees;
+    try {
+        validate(camera);
+    } catch (const InputError& e) {
+        throw InputError(std::string("view refused, the view is unchanged: ") + e.what());
+    }
+    OrbitCamera next = *this;
+    next.target_ = camera.look_at;
+    next.up_ = glm::normalize(camera.up);
+    next.vfov_degrees_ = camera.vfov_degrees;
     const glm::vec3 offset = camera.eye - camera.look_at;
-    distance_ = std::max(glm::length(offset), 1e-6f);
-    const glm::vec3 dir = offset / distance_;
-    pitch_ = std::asin(std::clamp(glm::dot(dir, up_), -1.0f, 1.0f));
-    const glm::vec3 x = any_perpendicular(up_), z = glm::cross(x, up_);
-    yaw_ = std::atan2(glm::dot(dir, x), glm::dot(dir, z));
+    next.distance_ = std::max(glm::length(offset), 1e-6f);
+    const glm::vec3 dir = offset / next.distance_;
+    next.pitch_ = std::asin(std::clamp(glm::dot(dir, next.up_), -1.0f, 1.0f));
+    const glm::vec3 x = any_perpendicular(next.up_), z = glm::cross(x, next.up_);
+    next.yaw_ = std::atan2(glm::dot(dir, x), glm::dot(dir, z));
+    commit(next, "view");  // valid, yet its eye rebuilt from look-at and distance may overflow
 }
 
 Camera OrbitCamera::camera() const {
@@ -38,8 +57,10 @@ Camera OrbitCamera::camera() const {
 }
 
 void OrbitCamera::orbit(float dx, float dy) {
-    yaw_ -= dx * 0.008f;
-    pitch_ = std::clamp(pitch_ + dy * 0.008f, -kMaxPitch, kMaxPitch);
+    OrbitCamera next = *this;
+    next.yaw_ -= dx * 0.008f;
+    next.pitch_ = std::clamp(pitch_ + dy * 0.008f, -kMaxPitch, kMaxPitch);
+    commit(next, "orbit");
 }
 
 void OrbitCamera::pan(float dx, float dy, float height) {
@@ -50,18 +71,24 @@ void OrbitCamera::pan(float dx, float dy, float height) {
     // One pixel at the target's distance.
     const float pixel =
         2.0f * distance_ * std::tan(glm::radians(vfov_degrees_) * 0.5f) / std::max(height, 1.0f);
-    target_ += (-dx * right + dy * up) * pixel;
+    OrbitCamera next = *this;
+    next.target_ += (-dx * right + dy * up) * pixel;
+    commit(next, "pan");
 }
 
 void OrbitCamera::zoom(float steps) {
-    distance_ = std::max(distance_ * std::pow(0.9f, steps), 1e-6f);
+    OrbitCamera next = *this;
+    next.distance_ = std::max(distance_ * std::pow(0.9f, steps), 1e-6f);
+    commit(next, "zoom");
 }
 
 void OrbitCamera::fly(float forward, float right, float up, float seconds) {
     const Camera c = camera();
     const glm::vec3 f = glm::normalize(c.look_at - c.eye);
     const glm::vec3 r = glm::normalize(glm::cross(f, up_));
-    target_ += (forward * f + right * r + up * up_) * (distance_ * seconds);
+    OrbitCamera next = *this;
+    next.target_ += (forward * f + right * r + up * up_) * (distance_ * seconds);
+    commit(next, "fly");
 }
 
 }  // namespace edacrt::app

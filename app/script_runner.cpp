@@ -146,7 +146,12 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
                     fail(e.what());
                 }
             else
-                s.camera.orbit(float(c.numbers[0]), float(c.numbers[1]));
+                try {
+                    s.camera.orbit(float(c.numbers[0]), float(c.numbers[1]));
+                } catch (const InputError& e) {
+                    s.status = e.what();  // as a drag shows it
+                    fail(e.what());
+                }
             ++next_;
             return;  // the next frame submits the change before anything waits on it
         } else if (c.verb == "view" || c.verb == "tab" || c.verb == "panels" ||

@@ -25,6 +25,7 @@
 #include "command_line.h"
 #include "display.h"
 #include "panels/panels.h"
+#include "parse_command_line.h"
 #include "render/camera_options.h"
 #include "render/default_camera.h"
 #include "render/film.h"
@@ -94,8 +95,9 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
     const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-    if (forward != 0 || right != 0 || up != 0) s.camera.fly(forward, right, up, dt);
-    if (ImGui::IsKeyPressed(GLFW_KEY_R)) s.camera.reset(s.scene_camera);
+    if (forward != 0 || right != 0 || up != 0)
+        change_camera(s, [&] { s.camera.fly(forward, right, up, dt); });
+    if (ImGui::IsKeyPressed(GLFW_KEY_R)) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
     if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s
         if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_play(s);
         if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) seek(s, s.playback.time - 1.0 / 24);
@@ -135,9 +137,9 @@ int run_viewer(const ViewerOptions& options) {
             throw InputError("--shutter must be a number of seconds from 0 to 1000");
         check_setting("speed", options.speed);
         if (!std::isfinite(options.time)) throw InputError("--time must be finite");
-    } catch (const std::exception& e) {
+    } catch (const std::exception& e) {  // a flag's value: a usage error
         std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
-        return 1;
+        return flags::kExitUsageError;
     }
     s.playback.motion_blur = options.shutter > 0.0;
     if (options.shutter > 0.0) s.playback.shutter = float(options.shutter);
@@ -157,7 +159,7 @@ int run_viewer(const ViewerOptions& options) {
     } else if (!options.animate.empty() || options.play || options.time != 0.0) {
         std::cerr << "edacrt_viewer: error: --time and --play need an animated scene "
                      "(--animate, or an animation file)\n";
-        return 1;
+        return flags::kExitUsageError;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
     if (!s.bookmarks_path.empty()) {
@@ -280,10 +282,13 @@ int run_viewer(const ViewerOptions& options) {
                 const auto drag = [&](ImGuiMouseButton b) {
                     return ImGui::IsMouseDragging(b) && in_image(io.MouseClickedPos[b]);
                 };
-                if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
-                if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
-                    s.camera.pan(d.x, d.y, image.h);
-                if (io.MouseWheel != 0.0f && in_image(io.MousePos)) s.camera.zoom(io.MouseWheel);
+                change_camera(s, [&] {
+                    if (drag(ImGuiMouseButton_Left)) s.camera.orbit(d.x, d.y);
+                    if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
+                        s.camera.pan(d.x, d.y, image.h);
+                    if (io.MouseWheel != 0.0f && in_image(io.MousePos))
+                        s.camera.zoom(io.MouseWheel);
+                });
             }
             handle_keys(s, dt, quit);
 

@@ -8,6 +8,7 @@
 
 #include "render/camera_options.h"
 #include "render_worker.h"
+#include "util/error.h"
 #include "viewer_state.h"
 
 namespace edacrt::app {
@@ -51,6 +52,17 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
 /// the image centre), following one pixel.
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
                                         bool crop);
+
+/// Runs a change of the camera (OrbitCamera throws InputError for one it refuses): the view
+/// is kept and the refusal shown on the status line (the mouse and keys; a script fails).
+template <typename Change>
+void change_camera(ViewerState& state, Change&& change) {
+    try {
+        change();
+    } catch (const InputError& e) {
+        state.status = e.what();
+    }
+}
 
 /// Saves the view as the scene's bookmark `name` (replacing one of that name) and writes the
 /// bookmarks file, for the Camera tab's "save view" and the script's `bookmark`; the status

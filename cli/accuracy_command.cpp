@@ -202,12 +202,18 @@ std::vector<std::vector<ReferenceHit>> compute_references(std::span<const Triang
 
 void run(const AccuracyOptions& o) {
     const auto threads = apply_thread_limit(o.common);
-    if (o.rays < 1 || o.rays > 10'000'000) throw InputError("--rays must be 1..10000000");
     std::vector<std::string> methods = o.methods;
-    if (o.skip_naive) std::erase(methods, std::string(enum_name(kMethods, Method::naive)));
-    if (methods.empty()) throw InputError("no method left to measure (--skip-naive removed naive)");
-    for (const std::string& name : methods) parse_enum_or_throw(kMethods, name);  // before any work
+    check_flags([&] {
+        if (o.rays < 1 || o.rays > 10'000'000) throw InputError("--rays must be 1..10000000");
+        if (o.skip_naive) std::erase(methods, std::string(enum_name(kMethods, Method::naive)));
+        if (methods.empty())
+            throw InputError("no method left to measure (--skip-naive removed naive)");
+        for (const std::string& name : methods) parse_enum_or_throw(kMethods, name);
+    });
+    const std::vector<NamedPath> outputs = {{"--stats", o.common.stats_path}};
+    check_distinct_files(outputs, {{"--scene", o.common.scene}});
     const Scene scene = load_scene_verbose(o.common.scene);
+    check_outputs_spare_scene(outputs, scene);
     if (scene.triangle_count() == 0) throw InputError(scene.source + ": no triangles");
     const Camera camera = choose_camera(scene, CameraOptions{});
     const FrameVector<Triangle> triangles = gather_triangles(scene);

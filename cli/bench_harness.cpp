@@ -341,13 +341,33 @@ void write_outputs(const BenchOptions& o, const std::vector<int>& thread_counts,
     write_file(o.markdown_path, text, "benchmark markdown");
 }
 
+/// The ray file --write-rays writes for one scene and set.
+std::string rays_file(const BenchOptions& o, const BenchScene& scene, const RaySet& set) {
+    return (std::filesystem::path(o.rays_dir) / (scene.name + "_" + set.name + ".rays")).string();
+}
+
 }  // namespace
 
 void run_bench(const BenchOptions& o) {
-    check_distinct_files({{"--json", o.json_path}, {"--markdown", o.markdown_path}});
-    if (o.dynamic) validate_animation(o);
-    const std::vector<Variant> variants = make_variants(o.methods, o.dynamic);
-    const std::vector<RaySet> sets = make_sets(o);
+    std::vector<Variant> variants;
+    std::vector<RaySet> sets;
+    check_flags([&] {
+        if (o.dynamic) validate_animation(o);
+        variants = make_variants(o.methods, o.dynamic);
+        sets = make_sets(o);
+    });
+    const std::vector<BenchScene> scenes = bench_scenes(o);
+    if (scenes.empty()) throw InputError("no scene to measure (all were skipped)");
+    // The ray files' names are known up front: no report may share one, nor any a scene file.
+    std::vector<NamedPath> outputs = {{"--json", o.json_path}, {"--markdown", o.markdown_path}};
+    std::vector<NamedPath> inputs;
+    for (const BenchScene& scene : scenes) {
+        inputs.push_back({"--scene", scene.spec});
+        if (!o.rays_dir.empty())
+            for (const RaySet& set : sets)
+                outputs.push_back({"--write-rays", rays_file(o, scene, set)});
+    }
+    check_distinct_files(outputs, inputs);
     check_camera_memory(o, sets, variants.size());
     check_writable(o.json_path, "--json");
     check_writable(o.markdown_path, "--markdown");
@@ -358,8 +378,6 @@ void run_bench(const BenchOptions& o) {
             throw InputError("--write-rays " + o.rays_dir + ": cannot create this directory" +
                              (ec ? " (" + ec.message() + ")" : std::string()));
     }
-    const std::vector<BenchScene> scenes = bench_scenes(o);
-    if (scenes.empty()) throw InputError("no scene to measure (all were skipped)");
 
     const int all_threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
     std::vector<int> thread_counts = {all_threads};
@@ -386,6 +404,7 @@ void run_bench(const BenchOptions& o) {
                                      ? load_animated_scene(bench_scene.spec, o.animation)
                                      : AnimatedScene{load_scene_verbose(bench_scene.spec), nullptr};
         Scene& scene = animated.scene;
+        check_outputs_spare_scene(outputs, scene);
         const std::size_t triangles = scene.triangle_count();
         if (triangles == 0) throw InputError(scene.source + ": no triangles");
         const BenchView view = bench_view(scene, bench_scene.name);
@@ -404,9 +423,7 @@ void run_bench(const BenchOptions& o) {
                              variants.size(), true, 0, "smaller --rays-per-triangle values");
             const std::vector<Ray> rays = bench_rays.make(set);
             if (!o.rays_dir.empty())  // for `edacrt trace` of one set alone
-                write_rays(std::filesystem::path(o.rays_dir) /
-                               (bench_scene.name + "_" + set.name + ".rays"),
-                           rays);
+                write_rays(rays_file(o, bench_scene, set), rays);
             for (int threads : thread_counts) {
                 const std::string what = bench_scene.name + " " + set.name + ", " +
                                          std::to_string(rays.size()) + " rays, " +

@@ -18,7 +18,10 @@ struct CameraRaysOptions {
 };
 
 void run(const CameraRaysOptions& o) {
+    const std::vector<NamedPath> outputs = {{"--out", o.out}};
+    check_distinct_files(outputs, {{"--scene", o.scene}});
     const Scene scene = load_scene_verbose(o.scene);
+    check_outputs_spare_scene(outputs, scene);
     const Camera camera = choose_camera(scene, o.camera);
     const std::vector<Ray> rays = PinholeProjection(camera, o.width, o.height).pixel_centre_rays();
     write_rays(o.out, rays);

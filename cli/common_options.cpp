@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include "enum_flags.h"
 #include "progress.h"
@@ -118,17 +120,41 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
 
 void check_distinct_files(const std::vector<NamedPath>& outputs,
                           const std::vector<NamedPath>& inputs) {
-    for (std::size_t i = 0; i < outputs.size(); ++i) {
-        const NamedPath& a = outputs[i];
-        if (a.path.empty()) continue;
-        for (std::size_t j = i + 1; j < outputs.size(); ++j)
-            if (!outputs[j].path.empty() && same_output_file(a.path, outputs[j].path))
-                throw InputError(a.option + " and " + outputs[j].option + " both name " + a.path +
-                                 ": give each output a file of its own");
-        for (const NamedPath& in : inputs)
-            if (!in.path.empty() && same_output_file(a.path, in.path))
-                throw InputError(a.option + " " + a.path + " is the " + in.option +
-                                 " input: writing it would replace what is read");
+    // By identity (util/output_file.h), so that thousands of frames cost no pairwise checks.
+    std::map<std::string, const NamedPath*> written;
+    for (const NamedPath& out : outputs) {
+        if (out.path.empty()) continue;
+        const std::optional<std::string> id = output_identity(out.path);
+        if (!id) continue;
+        const auto [at, fresh] = written.emplace(*id, &out);
+        if (!fresh)
+            throw InputError(at->second->option + " and " + out.option + " both name " +
+                             at->second->path + ": give each output a file of its own");
+    }
+    for (const NamedPath& in : inputs) {
+        if (in.path.empty() || in.path.starts_with("builtin:")) continue;
+        const std::optional<std::string> id = output_identity(in.path);
+        if (!id) continue;
+        if (const auto at = written.find(*id); at != written.end())
+            throw InputError(at->second->option + " " + at->second->path + " is the " + in.option +
+                             " input" + (in.path == at->second->path ? "" : " " + in.path) +
+                             ": writing it would replace what is read");
+    }
+}
+
+void check_outputs_spare_scene(const std::vector<NamedPath>& outputs, const Scene& scene) {
+    std::vector<NamedPath> inputs;
+    for (const std::string& file : scene.inputs) inputs.push_back({"scene's", file});
+    check_distinct_files(outputs, inputs);
+}
+
+void check_flags(const std::function<void()>& checks) {
+    try {
+        checks();
+    } catch (const UsageError&) {
+        throw;
+    } catch (const InputError& e) {
+        throw UsageError(e.what());
     }
 }
 

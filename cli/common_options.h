@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -53,10 +54,21 @@ struct NamedPath {
 };
 
 /// Throws InputError before any work when two outputs name the same file (the second would
-/// silently replace the first), or an output names an input (read, then overwritten).
-/// Devices such as /dev/null and /dev/stdout may be shared.
+/// silently replace the first), or an output names an input (read, then overwritten), through
+/// symbolic or hard links too. Devices such as /dev/null and /dev/stdout may be shared; inputs
+/// that are not files (builtin:...) are skipped.
 void check_distinct_files(const std::vector<NamedPath>& outputs,
                           const std::vector<NamedPath>& inputs = {});
+
+/// The same for the files a scene's loading read besides those on the command line (its MTL
+/// libraries, the meshes of an animation file, key frames: Scene::inputs), once it is loaded
+/// and before anything is rendered or written.
+void check_outputs_spare_scene(const std::vector<NamedPath>& outputs, const Scene& scene);
+
+/// Runs the checks of flag values and combinations: an InputError they throw becomes a
+/// UsageError (exit status 2), as the engine's validators (validate(RenderSettings), ...)
+/// serve files and flags alike.
+void check_flags(const std::function<void()>& checks);
 
 /// Seconds since `start` on the steady clock.
 double seconds_since(std::chrono::steady_clock::time_point start);

@@ -6,11 +6,13 @@
 
 #include "camera_flags.h"
 #include "commands.h"
+#include "common_options.h"
 #include "enum_flags.h"
 #include "render/default_camera.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
+#include "scene/text_scan.h"
 #include "stats_json.h"
 #include "trace/tracer.h"
 #include "util/error.h"
@@ -42,7 +44,7 @@ std::string format_bytes(std::uint64_t bytes) {
 }
 
 /// Everything reported, as JSON; the text form is printed from it.
-nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
+nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, const Scene& scene) {
     const SceneSummary s = summarize_scene(scene);
     nlohmann::json materials = nlohmann::json::array();
     for (const MaterialSummary& m : s.materials) {
@@ -61,9 +63,6 @@ nlohmann::json describe(const InfoOptions& o, const Scene& scene) {
                              : is_interior(scene) ? "inside the interior, above the floor"
                                                   : "framing the bounds from +z";
 
-    RenderSettings settings = o.settings;
-    settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
-    validate(settings);
     // The renderer's state with a PNG written at the end, as `edacrt render` estimates it.
     const std::uint64_t renderer = render_memory_bytes(
         settings, sizeof(glm::vec3) + save_image_bytes_per_pixel(ImageFormat::png));
@@ -126,9 +125,14 @@ void print_text(const nlohmann::json& j) {
     for (const auto& m : j["materials"]) {
         std::cout << "    " << text(m["name"]) << ": " << m["triangles"] << " triangles, "
                   << m["model"].get<std::string>() << "\n";
-        for (const auto& t : m["textures"])
-            std::cout << "      " << text(t["keyword"]) << " " << text(t["file"])
-                      << " (not rendered)\n";
+        // The first few of a material's textures, as warnings are capped (scene/text_scan.h).
+        const std::size_t shown = text_scan::WarningLimit::kWarningsPerKind;
+        for (std::size_t i = 0; i < std::min(shown, m["textures"].size()); ++i)
+            std::cout << "      " << text(m["textures"][i]["keyword"]) << " "
+                      << text(m["textures"][i]["file"]) << " (not rendered)\n";
+        if (m["textures"].size() > shown)
+            std::cout << "      ... and " << m["textures"].size() - shown
+                      << " more textures (not rendered)\n";
     }
     const auto& c = j["camera"];
     std::cout << "  camera       from " << c["from"].get<std::string>() << ": eye " << v3(c["eye"])
@@ -150,7 +154,12 @@ void print_text(const nlohmann::json& j) {
 }
 
 void run(const InfoOptions& o) {
-    const nlohmann::json info = describe(o, load_scene(o.scene));
+    RenderSettings settings = o.settings;
+    check_flags([&] {
+        settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+        validate(settings);
+    });
+    const nlohmann::json info = describe(o, settings, load_scene(o.scene));
     if (o.json)
         std::cout << json_text(info);
     else

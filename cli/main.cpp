@@ -1,5 +1,6 @@
 // edacrt: the headless command-line tool. Renders images and traces ray files with any method.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 
@@ -9,6 +10,9 @@
 #include "util/printable.h"
 
 int main(int argc, char** argv) {
+    // Past `ulimit -f` a write then fails with EFBIG, which OutputFile reports (the old file
+    // kept, the temporary removed), instead of SIGXFSZ killing the process without a word.
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{
         "EDACRT Studio command-line tool: divide-and-conquer ray tracing without a stored "
         "acceleration structure.\nRun 'edacrt COMMAND --help' for the options of a command.",

@@ -16,6 +16,7 @@
 #include "common_options.h"
 #include "enum_flags.h"
 #include "interrupt.h"
+#include "parse_command_line.h"
 #include "progress.h"
 #include "render/image_format.h"
 #include "render/render_memory.h"
@@ -84,20 +85,34 @@ void run(RenderOptions o) {
     catch_interrupts();  // until the render starts, Ctrl-C exits at once
     take_animation_file(o.common.scene, o.animation);
     const auto threads = apply_thread_limit(o.common);
-    image_format(o.out);  // an unknown extension is refused before any work
-    check_distinct_files({{"--out", o.out}, {"--stats", o.common.stats_path}},
-                         {{"--reference", o.reference}});
+    // The flags' values and combinations first: usage errors, before any work.
+    std::vector<FrameJob> frames;
     RenderSettings settings = o.settings;
-    if (!o.time_budget_only())
-        settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
-    // Motion blur renders each pass at its own time of the shutter: passes of one sample.
-    if (o.animation.shutter > 0.0) settings.samples_per_pass = 1;
-    if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
-    validate(settings);
+    check_flags([&] {
+        image_format(o.out);  // an unknown extension
+        // An animation (animation_options.h) renders each frame to its own file; a still
+        // scene is one frame at t = 0.
+        frames = frame_jobs(o.animation, o.out);
+        if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
+            throw InputError(
+                "--reference and --stats are for one image: give --time, not --frames");
+        if (!o.time_budget_only())
+            settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+        // Motion blur renders each pass at its own time of the shutter: passes of one sample.
+        if (o.animation.shutter > 0.0) settings.samples_per_pass = 1;
+        if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
+        validate(settings);
+        validate_exposure(o.exposure);
+        if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
+            throw InputError("--time-budget must be a finite number of seconds >= 0");
+    });
+    std::vector<NamedPath> outputs;
+    for (const FrameJob& frame : frames) outputs.push_back({"--out", frame.out});
+    outputs.push_back({"--stats", o.common.stats_path});
+    check_distinct_files(outputs, {{"--reference", o.reference},
+                                   {"--scene", o.common.scene},
+                                   {"--animate", o.animation.animate}});
     check_render_memory(settings, command_bytes_per_pixel(o));
-    validate_exposure(o.exposure);
-    if (!(o.time_budget >= 0.0) || !std::isfinite(o.time_budget))
-        throw InputError("--time-budget must be a finite number of seconds >= 0");
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     std::optional<Image> reference;
     if (!o.reference.empty()) reference = load_image(o.reference);
@@ -105,15 +120,11 @@ void run(RenderOptions o) {
         throw InputError(o.reference + ": the reference is " + std::to_string(reference->width) +
                          "x" + std::to_string(reference->height) + ", the render " +
                          std::to_string(settings.width) + "x" + std::to_string(settings.height));
-    // An animation (animation_options.h) renders each frame to its own file; a still scene
-    // is one frame at t = 0.
-    const std::vector<FrameJob> frames = frame_jobs(o.animation, o.out);
-    if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
-        throw InputError("--reference and --stats are for one image: give --time, not --frames");
     // Where the images and statistics go is checked before the render, not after it.
     for (const FrameJob& frame : frames) create_parent_folders(frame.out);
     check_writable(o.common.stats_path, "--stats");
     AnimatedScene animated = load_animated_verbose(o.common.scene, o.animation);
+    check_outputs_spare_scene(outputs, animated.scene);
     const Camera camera = choose_camera(animated.scene, o.camera);
     Renderer renderer(animated.scene, *tracer, camera, settings);
     for (const std::string& note : renderer.notes()) std::cerr << "edacrt: note: " << note << "\n";
@@ -309,6 +320,7 @@ std::function<void()> add_render_command(CLI::App& app) {
     command
         ->add_option("--wavefront-paths", s.wavefront_paths,
                      "paths per wavefront (0: the whole pass, within 1 GiB of wavefront state)")
+        ->check(flags::whole_number())
         ->capture_default_str();
     command->add_option("--seed", s.seed, "sample seed")->capture_default_str();
     command->add_option("--exposure", o.exposure, "PNG, JPEG: exposure in stops")

@@ -21,11 +21,13 @@ struct TraceOptions {
 
 void run(const TraceOptions& o) {
     const auto threads = apply_thread_limit(o.common);
-    check_distinct_files({{"--out", o.out_path}, {"--stats", o.common.stats_path}},
-                         {{"--rays", o.rays_path}});
+    const std::vector<NamedPath> outputs = {{"--out", o.out_path},
+                                            {"--stats", o.common.stats_path}};
+    check_distinct_files(outputs, {{"--rays", o.rays_path}, {"--scene", o.common.scene}});
     const auto tracer = make_tracer(o.common);  // rejects bad parameters early
     const std::vector<Ray> rays = read_rays(o.rays_path);
     const Scene scene = load_scene_verbose(o.common.scene);
+    check_outputs_spare_scene(outputs, scene);
 
     // One batch: its fraction is unknown until it ends, so a terminal shows time passing.
     Progress progress(progress_style(o.common.quiet), "trace", Progress::Unit::rays);

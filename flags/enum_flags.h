@@ -5,6 +5,7 @@
 #include <string>
 
 #include "util/enum_table.h"
+#include "util/error.h"
 
 namespace edacrt::flags {
 
@@ -15,15 +16,21 @@ std::string enum_option_help(const std::string& help, const EnumTable<E, N>& tab
 }
 
 /// Adds `flag`, which sets `value` to the value its name names; `value` holds the default. An
-/// unknown name throws InputError ("unknown WHAT 'x' (known: ...)") from parse_command_line(),
-/// which reports it as bad input.
+/// unknown name throws InputError ("--FLAG: unknown WHAT 'x' (known: ...)") from
+/// parse_command_line(), which reports it as a usage error.
 template <typename E, std::size_t N>
 CLI::Option* add_enum_option(CLI::App& command, const std::string& flag, E& value,
                              const EnumTable<E, N>& table, const std::string& help) {
     return command
         .add_option_function<std::string>(
             flag,
-            [&value, &table](const std::string& name) { value = parse_enum_or_throw(table, name); },
+            [&value, &table, flag](const std::string& name) {
+                try {
+                    value = parse_enum_or_throw(table, name);
+                } catch (const InputError& e) {  // named as CLI11 names a flag it refuses
+                    throw InputError(flag + ": " + e.what());
+                }
+            },
             enum_option_help(help, table))
         ->default_str(std::string(enum_name(table, value)));
 }

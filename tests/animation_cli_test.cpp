@@ -100,9 +100,11 @@ TEST(AnimationCli, BadAnimationFlagsAreErrors) {
     const TempDir dir;
     const std::string out = " --out " + (dir.path() / "f_%02d.png").string();
     const std::string scene = "--scene " + spot() + " --animate wave ";
-    const auto expect_error = [&](const std::string& args, const std::string& message) {
+    // Bad flag values and combinations are usage errors (2); what loading finds, bad input (1).
+    const auto expect_error = [&](const std::string& args, const std::string& message,
+                                  int status = 2) {
         const auto result = test::run_cli(kSmall + args);
-        EXPECT_EQ(result.exit_code, 1) << args << "\n" << result.output;
+        EXPECT_EQ(result.exit_code, status) << args << "\n" << result.output;
         EXPECT_NE(result.output.find(message), std::string::npos) << args << "\n" << result.output;
     };
     expect_error(scene + "--frames 3:1" + out, "the last frame is before the first");
@@ -118,19 +120,20 @@ TEST(AnimationCli, BadAnimationFlagsAreErrors) {
     expect_error(scene + "--shutter -0.1 --out x.png", "--shutter must be");
     expect_error(scene + "--shutter inf --out x.png", "--shutter must be");
     expect_error(scene + "--frames 0:1 --stats s.json" + out, "for one image");
-    expect_error("--scene " + spot() + " --animate wave:amplitude=99 --out x.png", "amplitude");
-    expect_error("--animate wave --out x.png", "deforms a scene: name one");
-    expect_error("--out x.png", "no scene");
+    expect_error("--scene " + spot() + " --animate wave:amplitude=99 --out x.png", "amplitude", 1);
+    expect_error("--animate wave --out x.png", "deforms a scene: name one", 1);
+    expect_error("--out x.png", "no scene", 1);
     expect_error(
         "--scene " + spot() + " --sequence " + (dir.path() / "k%d.obj").string() + " --out x.png",
-        "names its own geometry");
-    expect_error("--sequence " + (dir.path() / "k%d.obj").string() + " --out x.png", "no file in");
+        "names its own geometry", 1);
+    expect_error("--sequence " + (dir.path() / "k%d.obj").string() + " --out x.png", "no file in",
+                 1);
     expect_error("--sequence a%d.obj --animate wave --out x.png", "give one");
     // The first frame renders before the broken key frame is read: an error, not a skip.
     dir.write("k1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     dir.write("k2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
     expect_error("--sequence " + (dir.path() / "k%d.obj").string() + " --frames 0:1" + out,
-                 "k2.obj: 2 triangles, other than the first key frame");
+                 "k2.obj: 2 triangles, other than the first key frame", 1);
 }
 
 // A number JSON can write but a double cannot hold: an input error naming the file.
@@ -193,7 +196,7 @@ TEST(AnimationCli, AnimationFlagsWithoutAnAnimationAreRefused) {
     for (const std::string& flag : {"--frames 0:1", "--time 1", "--shutter 0.1"}) {
         const auto result = test::run_cli(kSmall + "--scene " + spot() + " " + flag + " --out " +
                                           (dir.path() / "x_%d.png").string());
-        EXPECT_EQ(result.exit_code, 1) << flag << "\n" << result.output;
+        EXPECT_EQ(result.exit_code, 2) << flag << "\n" << result.output;  // a usage error
         EXPECT_NE(result.output.find("edacrt: error: " + flag.substr(0, flag.find(' ')) +
                                      " is for an animation"),
                   std::string::npos)
@@ -263,10 +266,10 @@ TEST(AnimationCli, DynamicBenchReportsUpdateAndTraceForEveryMethod) {
     EXPECT_NE(markdown.find("faster than edacrt from"), std::string::npos);
 
     const auto bad = test::run_cli("bench --dynamic --scene spot --frames 0");
-    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_EQ(bad.exit_code, 2);  // a usage error
     EXPECT_NE(bad.output.find("--frames must be from 1 to 1000"), std::string::npos);
     const auto negative = test::run_cli("bench --dynamic --scene spot --rays-per-triangle -1");
-    EXPECT_EQ(negative.exit_code, 1);
+    EXPECT_EQ(negative.exit_code, 2);
     EXPECT_NE(negative.output.find("--rays-per-triangle"), std::string::npos);
 }
 

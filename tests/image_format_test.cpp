@@ -225,7 +225,7 @@ TEST_F(ImageFormatTest, RenderWritesEveryFormatAndReadsAnExrReference) {
     EXPECT_NE(compared.output.find("rmse"), std::string::npos) << compared.output;
 
     const auto unknown = test::run_cli(small + "--out " + path("r.tiff").string());
-    EXPECT_EQ(unknown.exit_code, 1) << unknown.output;
+    EXPECT_EQ(unknown.exit_code, 2) << unknown.output;  // a usage error
     EXPECT_NE(unknown.output.find("r.tiff: unknown image format '.tiff'; the extension chooses "
                                   "it: .png, .jpg, .jpeg, .hdr, .pfm, .exr"),
               std::string::npos)

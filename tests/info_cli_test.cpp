@@ -208,5 +208,42 @@ TEST(InfoCli, LargeScenesMatchTheirPublishedCounts) {
     }
 }
 
+// A material naming thousands of missing textures once printed a warning and a line for each
+// (40,000 lines): both stop after ten, with the count of the rest, in the text and the JSON.
+TEST(InfoCli, ManyMissingTexturesAreCappedWithACount) {
+    const test::TempDir dir;
+    std::string mtl = "newmtl a\n";
+    for (int i = 0; i < 50; ++i) mtl += "map_Kd missing" + std::to_string(i) + ".png\n";
+    dir.write("many.mtl", mtl);
+    const auto obj = dir.write("many.obj",
+                               "mtllib many.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "usemtl a\nf 1 2 3\n");
+    const auto text = test::run_cli("info " + obj.string());
+    ASSERT_EQ(text.exit_code, 0) << text.output;
+    const auto count = [&](const std::string& what) {
+        std::size_t n = 0;
+        for (std::size_t at = text.output.find(what); at != std::string::npos;
+             at = text.output.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    EXPECT_EQ(count(".png is missing"), 10u) << text.output;
+    EXPECT_EQ(count(".png (not rendered)"), 10u) << text.output;
+    EXPECT_NE(text.output.find(obj.string() + ": ... and 40 more missing textures"),
+              std::string::npos)
+        << text.output;
+    EXPECT_NE(text.output.find("... and 40 more textures (not rendered)"), std::string::npos)
+        << text.output;
+
+    const auto json = test::run_cli("info --json " + obj.string() + " 2>/dev/null");
+    ASSERT_EQ(json.exit_code, 0) << json.output;
+    const auto info = nlohmann::json::parse(json.output);
+    std::size_t missing = 0;
+    for (const auto& w : info["warnings"])
+        missing += w.get<std::string>().find(".png is missing") != std::string::npos;
+    EXPECT_EQ(missing, 10u) << info["warnings"].dump(1);
+    EXPECT_EQ(info["warnings"].back(), obj.string() + ": ... and 40 more missing textures");
+}
+
 }  // namespace
 }  // namespace edacrt

@@ -196,5 +196,112 @@ TEST(OutputSafety, OutputsThatShareAFileAreRefusedBeforeAnyWork) {
     EXPECT_EQ(shared.exit_code, 0) << shared.output;
 }
 
+// No output may replace a file the command reads: the scene, every MTL library it loads, the
+// animation file and the meshes it names, key frames, rays; through links too. The files named
+// on the command line are refused before loading, those the scene names before any rendering.
+TEST(OutputSafety, OutputsNeverReplaceTheCommandsInputs) {
+    const TempDir dir;
+    const std::string d = dir.path().string() + "/";
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nmtllib m.mtl\nusemtl red\nf 1 2 3\n";
+    const std::string mtl = "newmtl red\nKd 1 0 0\n";
+    const std::string anim = R"({"objects": [{"mesh": "tri.obj"}]})";
+    dir.write("tri.obj", obj);
+    dir.write("m.mtl", mtl);
+    dir.write("anim.json", anim);
+    dir.write("f_0000.obj", obj);  // key frames
+    dir.write("f_0001.obj", obj);
+    write_rays(dir.path() / "rays.bin", std::vector<Ray>(4, Ray{{0, 0, 5}, {0, 0, -1}, 0, 1e30f}));
+    const std::string rays = bytes_of(dir.path() / "rays.bin");
+    fs::create_symlink(dir.path() / "m.mtl", dir.path() / "link.mtl");
+    fs::create_hard_link(dir.path() / "tri.obj", dir.path() / "hard.obj");
+    const std::set<std::string> files = {"tri.obj",    "m.mtl",    "anim.json", "f_0000.obj",
+                                         "f_0001.obj", "rays.bin", "link.mtl",  "hard.obj"};
+    const std::string render = "render --width 8 --height 8 --spp 1 -q --out " + d + "x.png ";
+    const struct {
+        std::string args, message;
+        bool before_loading;
+    } cases[] = {
+        {render + "--scene " + d + "tri.obj --stats " + d + "tri.obj",
+         "--stats " + d + "tri.obj is the --scene input", true},
+        {render + "--scene " + d + "tri.obj --stats " + d + "hard.obj",
+         "--stats " + d + "hard.obj is the --scene input " + d + "tri.obj", true},
+        {render + "--scene " + d + "tri.obj --stats " + d + "m.mtl",
+         "--stats " + d + "m.mtl is the scene's input", false},
+        {render + "--scene " + d + "tri.obj --stats " + d + "link.mtl",
+         "--stats " + d + "link.mtl is the scene's input " + d + "m.mtl", false},
+        {render + "--animate " + d + "anim.json --time 0 --stats " + d + "anim.json",
+         "--stats " + d + "anim.json is the --animate input", true},
+        {render + "--scene " + d + "anim.json --stats " + d + "tri.obj",
+         "--stats " + d + "tri.obj is the scene's input", false},
+        {render + "--sequence " + d + "f_%04d.obj --stats " + d + "f_0001.obj",
+         "--stats " + d + "f_0001.obj is the scene's input", false},
+        {"camera-rays --scene " + d + "tri.obj --width 4 --height 4 --out " + d + "tri.obj",
+         "--out " + d + "tri.obj is the --scene input", true},
+        {"trace --scene " + d + "tri.obj --rays " + d + "rays.bin --out " + d + "tri.obj",
+         "--out " + d + "tri.obj is the --scene input", true},
+        {"trace --scene " + d + "tri.obj --rays " + d + "rays.bin --out " + d + "link.mtl",
+         "--out " + d + "link.mtl is the scene's input", false},
+        {"accuracy --scene " + d + "tri.obj --rays 10 --stats " + d + "m.mtl",
+         "--stats " + d + "m.mtl is the scene's input", false},
+        {"bench --scene " + d +
+             "tri.obj --width 8 --height 8 --repeat 1 --sets camera --spp 1 "
+             "--methods bvh -q --json " +
+             d + "tri.obj",
+         "--json " + d + "tri.obj is the --scene input", true},
+    };
+    for (const auto& c : cases) {
+        const auto result = test::run_cli(c.args);
+        EXPECT_EQ(result.exit_code, 1) << c.args << "\n" << result.output;
+        EXPECT_NE(result.output.find("edacrt: error: " + c.message), std::string::npos)
+            << c.args << "\n"
+            << result.output;
+        EXPECT_NE(result.output.find(": writing it would replace what is read"), std::string::npos)
+            << result.output;
+        if (c.before_loading)
+            EXPECT_EQ(result.output.find("loaded"), std::string::npos) << "work before the refusal";
+        EXPECT_EQ(bytes_of(dir.path() / "tri.obj"), obj) << c.args;
+        EXPECT_EQ(bytes_of(dir.path() / "m.mtl"), mtl) << c.args;
+        EXPECT_EQ(bytes_of(dir.path() / "anim.json"), anim) << c.args;
+        EXPECT_EQ(bytes_of(dir.path() / "f_0001.obj"), obj) << c.args;
+        EXPECT_EQ(bytes_of(dir.path() / "rays.bin"), rays) << c.args;
+        EXPECT_EQ(names_in(dir.path()), files) << c.args << ": nothing written";
+    }
+}
+
+// bench --write-rays names its ray files after the scene and set: a report given one of those
+// names would be replaced by it (or replace it), so it is refused before any work.
+TEST(OutputSafety, BenchReportsMayNotNameAWrittenRayFile) {
+    const TempDir dir;
+    const std::string d = dir.path().string() + "/";
+    dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto result = test::run_cli("bench --scene " + d +
+                                      "tri.obj --width 8 --height 8 --repeat 1 --sets camera "
+                                      "--spp 1 --methods bvh -q --write-rays " +
+                                      d + "rays --json " + d + "rays/tri_camera-1spp.rays");
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: --json and --write-rays both name " + d +
+                                 "rays/tri_camera-1spp.rays"),
+              std::string::npos)
+        << result.output;
+    EXPECT_FALSE(fs::exists(dir.path() / "rays")) << "refused before any work";
+}
+
+// Under `ulimit -f` with SIGXFSZ at its default (kill), edacrt ignores the signal itself: the
+// write fails with EFBIG and is reported, the old file kept and no temporary left.
+TEST(OutputSafety, AFileSizeLimitIsReportedNotASilentKill) {
+    const TempDir dir;
+    const fs::path out = dir.write("old.png", kOld);
+    const auto result =
+        test::run_command("trap - XFSZ; ulimit -f 4; '" + test::cli_path().string() + "' " +
+                          kRender + "--integrator primary -q --out " + out.string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("edacrt: error: " + out.string() + ": cannot write"),
+              std::string::npos)
+        << result.output;
+    EXPECT_NE(result.output.find("File too large"), std::string::npos) << result.output;
+    EXPECT_EQ(bytes_of(out), kOld);
+    EXPECT_EQ(names_in(dir.path()), std::set<std::string>{"old.png"});
+}
+
 }  // namespace
 }  // namespace edacrt

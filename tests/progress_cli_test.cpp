@@ -186,7 +186,7 @@ TEST_F(ProgressCli, AccuracyShowsEachPhaseAndCanSkipNaive) {
     EXPECT_EQ(stats["results"].size(), 5u) << "edacrt on the five ray sets";
 
     const auto nothing = test::run_cli(accuracy + "--methods naive --skip-naive");
-    EXPECT_EQ(nothing.exit_code, 1) << nothing.output;
+    EXPECT_EQ(nothing.exit_code, 2) << nothing.output;  // a usage error
     EXPECT_NE(nothing.output.find("no method left to measure"), std::string::npos)
         << nothing.output;
 }

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <thread>
@@ -452,6 +454,64 @@ TEST(Script, FailedSavesAndRenderErrorsFailTheScript) {
                   "script line 3: the render failed: c-i (C_I) must be positive")
             << wait;
     }
+}
+
+// Every change keeps the camera finite and valid: one beyond float range is refused with a
+// message and the camera stays as it was (a NaN view once stalled the render and was written
+// out by write-command and bookmark).
+TEST(OrbitCamera, ChangesBeyondFloatRangeAreRefusedAndKeepTheCamera) {
+    OrbitCamera orbit;
+    orbit.reset({{1, 2, 5}, {0, 1, 0}, {0, 1, 0}, 40.0f});
+    const Camera before = orbit.camera();
+    const float huge = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<std::pair<std::string, std::function<void()>>> changes = {
+        {"orbit", [&] { orbit.orbit(huge, huge); }},
+        {"orbit", [&] { orbit.orbit(nan, 0.0f); }},
+        {"pan", [&] { orbit.pan(3e38f, -3e38f, 1.0f); }},
+        {"zoom", [&] { orbit.zoom(-1e4f); }},
+        {"zoom", [&] { orbit.zoom(nan); }},
+        {"fly", [&] { orbit.fly(1.0f, 0.0f, 0.0f, 1e38f); }},
+        {"view",
+         [&] {
+             orbit.reset({{3e38f, 0, 0}, {-3e38f, 0, 0}, {0, 1, 0}, 45.0f});
+         }},
+        {"view",
+         [&] {
+             orbit.reset({{nan, 0, 0}, {0, 0, 0}, {0, 1, 0}, 45.0f});
+         }},
+    };
+    for (const auto& [what, change] : changes) {
+        const std::string error = error_of(change);
+        EXPECT_EQ(error.rfind(what + " refused, the view is unchanged: camera", 0), 0u)
+            << what << ": " << error;
+        EXPECT_EQ(orbit.camera(), before) << what;
+    }
+    EXPECT_NO_THROW(orbit.orbit(1e3f, 0.0f));  // an ordinary change is taken
+    EXPECT_NE(orbit.camera(), before);
+    EXPECT_NO_THROW(validate(orbit.camera()));
+}
+
+// A script's orbit beyond float range fails its line with the camera's message, which the
+// status line shows; the view, and what write-command and bookmark write, stay finite.
+TEST(Script, AnOrbitBeyondFloatRangeFailsAndKeepsTheView) {
+    const test::TempDir dir;
+    ViewerState s;
+    s.scene_path = "builtin:sphere";
+    s.camera.reset({{0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 45.0f});
+    const Camera before = s.camera.camera();
+    s.bookmarks_path = (dir.path() / "bookmarks.json").string();
+    EXPECT_EQ(run_script(s, "frames 0\norbit 1e40 1e40\n"),
+              "script line 2: orbit refused, the view is unchanged: camera: eye, look-at and up "
+              "must be finite");
+    EXPECT_EQ(s.status,
+              "orbit refused, the view is unchanged: camera: eye, look-at and up must be finite");
+    EXPECT_EQ(s.camera.camera(), before);
+    EXPECT_EQ(run_script(s, "bookmark after\n"), "");
+    Bookmarks read;
+    EXPECT_TRUE(read.load(s.bookmarks_path).empty());
+    ASSERT_EQ(read.of("builtin:sphere").size(), 1u);
+    EXPECT_EQ(read.of("builtin:sphere")[0].camera, before);
 }
 
 // `bookmark NAME` saves the view as the Camera tab's "save view" does: the file read back

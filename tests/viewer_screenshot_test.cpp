@@ -579,6 +579,13 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
         EXPECT_NE(result.output.find("\nrun 'edacrt_viewer --help'"), std::string::npos)
             << result.output;
     }
+    // Values refused after parsing, and unknown enum names, are usage errors too.
+    for (const char* args : {" --shutter -1", " --speed 9", " --time nan", " --method foo",
+                             " builtin:sphere --play"}) {
+        const auto result = test::run_command("timeout 20 " EDACRT_VIEWER + std::string(args));
+        EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
+        EXPECT_EQ(result.output.rfind("edacrt_viewer: error: ", 0), 0u) << result.output;
+    }
 }
 
 // Names from files (a script's words, a scene path) reach the terminal escaped: an ESC byte

@@ -46,15 +46,8 @@ void draw_camera_tab(ViewerState& s) {
         wrapped_tooltip(std::string(param.help));
     }
     ImGui::PopItemWidth();
-    if (edited) {
-        try {
-            validate(c);
-            s.camera.reset(c);
-        } catch (const std::exception& e) {
-            s.status = e.what();
-        }
-    }
-    if (ImGui::Button("reset view (R)")) s.camera.reset(s.scene_camera);
+    if (edited) change_camera(s, [&] { s.camera.reset(c); });
+    if (ImGui::Button("reset view (R)")) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
 
     ImGui::Separator();
     if (ImGui::Button("copy as command line")) ImGui::SetClipboardText(s.command_line.c_str());
@@ -76,7 +69,7 @@ void draw_camera_tab(ViewerState& s) {
     std::string remove;
     for (const Bookmark& b : s.bookmarks.of(s.scene_path)) {
         ImGui::PushID(b.name.c_str());
-        if (ImGui::SmallButton("go")) s.camera.reset(b.camera);
+        if (ImGui::SmallButton("go")) change_camera(s, [&] { s.camera.reset(b.camera); });
         ImGui::SameLine();
         if (ImGui::SmallButton("x")) remove = b.name;
         ImGui::SameLine();

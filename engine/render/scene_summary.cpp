@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "render/bsdf.h"
+#include "scene/text_scan.h"
 
 namespace edacrt {
 namespace {
@@ -46,6 +47,9 @@ SceneSummary summarize_scene(const Scene& scene) {
     s.bounds = scene.bounds();
     s.warnings = scene.warnings;
     std::vector<std::string> notes;
+    // One material may name thousands of textures: their warnings stop after ten, as the
+    // loader's do.
+    text_scan::WarningLimit missing("missing textures");
     for (const Material& m : scene.materials) {
         MaterialSummary& summary = s.materials.emplace_back();
         summary.name = m.name;
@@ -54,9 +58,10 @@ SceneSummary summarize_scene(const Scene& scene) {
         summary.textures = m.textures;
         for (const TextureMap& texture : m.textures)
             if (!texture.path.empty() && !std::filesystem::is_regular_file(texture.path))
-                s.warnings.push_back("material '" + m.name + "': " + texture.keyword + " " +
-                                     texture.file + " is missing (" + texture.path + ")");
+                missing.add(s.warnings, "material '" + m.name + "': " + texture.keyword + " " +
+                                            texture.file + " is missing (" + texture.path + ")");
     }
+    missing.finish(s.warnings, scene.source);
     for (std::size_t i = 0; i < scene.triangle_count(); ++i) {
         const Triangle tri = scene.corners(i);
         const bool degenerate = is_degenerate(tri);

@@ -350,6 +350,7 @@ class ObjParser {
             read_mtl_ ? read_mtl_(name) : std::optional<std::string>();
         if (!text) return false;
         libraries_.push_back(name);
+        if (!mtl_dir_.empty()) scene_.inputs.push_back((fs::path(mtl_dir_) / name).string());
         // The name comes from the OBJ file, so messages show it escaped and shortened.
         const std::string mtl_source =
             mtl_dir_.empty() ? escape(name) : (fs::path(mtl_dir_) / escape(name)).string();
@@ -462,7 +463,9 @@ Scene load_obj(const std::filesystem::path& path) {
         std::string ignored;
         return read_file(dir / name, ignored);
     };
-    return ObjParser(*text, source, read_mtl, dir.empty() ? "." : dir.string()).parse();
+    Scene scene = ObjParser(*text, source, read_mtl, dir.empty() ? "." : dir.string()).parse();
+    scene.inputs.insert(scene.inputs.begin(), source);
+    return scene;
 }
 
 }  // namespace edacrt

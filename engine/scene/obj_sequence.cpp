@@ -148,6 +148,8 @@ AnimatedScene open_obj_sequence(std::string_view spec) {
     const std::vector<std::int64_t> frames = find_frames(pattern);
 
     AnimatedScene out{load_obj(pattern.path(frames.front())), nullptr};
+    for (std::size_t k = 1; k < frames.size(); ++k)  // key frames are read as they are shown
+        out.scene.inputs.push_back(pattern.path(frames[k]).string());
     out.animation = std::make_unique<ObjSequence>(
         "sequence:fps=" + shortest_text(fps) + ",pattern=" + std::string(pattern_text), out.scene,
         std::move(pattern), frames.front(), std::int64_t(frames.size()), fps);

@@ -149,6 +149,7 @@ void append(Scene& scene, Scene part, const std::string& name) {
     const auto normal_base = std::int32_t(scene.normals.size());
     const auto material_base = std::uint32_t(scene.materials.size());
     const std::size_t first_triangle = scene.triangles.size();
+    scene.inputs.insert(scene.inputs.end(), part.inputs.begin(), part.inputs.end());
     scene.positions.insert(scene.positions.end(), part.positions.begin(), part.positions.end());
     scene.normals.insert(scene.normals.end(), part.normals.begin(), part.normals.end());
     scene.materials.insert(scene.materials.end(), part.materials.begin(), part.materials.end());
@@ -278,6 +279,7 @@ AnimatedScene load_rigid_animation(const std::filesystem::path& path) {
     }
     if (root.contains("camera")) scene.camera = reader.camera(root["camera"]);
     scene.source = path.string();
+    scene.inputs.insert(scene.inputs.begin(), path.string());
 
     AnimatedScene out{std::move(scene), nullptr};
     out.animation = std::make_unique<RigidAnimation>(path.string(), out.scene, std::move(objects));

@@ -30,6 +30,9 @@ struct Scene {
 
     std::optional<Camera> camera;       // a viewpoint the scene suggests, if any
     std::vector<std::string> warnings;  // problems that were repaired or skipped
+    /// The files read to make it (OBJ, MTL libraries, animation file, key frames), so that a
+    /// command can refuse an output that would overwrite one of them.
+    std::vector<std::string> inputs;
 
     std::size_t triangle_count() const { return triangles.size(); }
     Triangle corners(std::size_t i) const {

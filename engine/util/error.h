@@ -12,4 +12,11 @@ class InputError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// A command line that asks for something impossible: a flag's value out of range, flags that
+/// do not go together. Reported as bad input is, with the usage error's exit status (2).
+class UsageError : public InputError {
+  public:
+    using InputError::InputError;
+};
+
 }  // namespace edacrt

@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "util/error.h"
@@ -142,14 +144,21 @@ void check_output_file(const std::filesystem::path& path, std::string_view what)
     ::unlink(temp.c_str());
 }
 
+std::optional<std::string> output_identity(const std::filesystem::path& path) {
+    if (written_in_place(path)) return std::nullopt;
+    struct stat status {};
+    // An existing file is its device and inode (hard links, symbolic links), a new one its
+    // resolved path: "d:" and "p:" keep the two kinds apart.
+    if (::stat(path.c_str(), &status) == 0)
+        return "d:" + std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino);
+    std::error_code ec;
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(path), ec);
+    return "p:" + (ec ? fs::absolute(path).lexically_normal() : resolved).string();
+}
+
 bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b) {
-    if (written_in_place(a) || written_in_place(b)) return false;
-    std::error_code ea, eb;
-    if (fs::exists(a, ea) && fs::exists(b, eb)) return fs::equivalent(a, b, ea) && !ea;
-    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
-    const fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
-    if (ea || eb) return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
-    return ca == cb;
+    const std::optional<std::string> ia = output_identity(a);
+    return ia && ia == output_identity(b);
 }
 
 void create_parent_folders(const std::filesystem::path& file) {

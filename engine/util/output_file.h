@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -48,6 +49,11 @@ void write_file(const std::filesystem::path& path, std::string_view bytes, std::
 /// temporary, or the existing file is read-only), so a long run fails before its work rather
 /// than at its end. Creates nothing that stays.
 void check_output_file(const std::filesystem::path& path, std::string_view what);
+
+/// What tells files apart when the content of `path` is written: the same string for every
+/// name of one file (after resolving "..", symbolic links and hard links); nullopt for devices
+/// and FIFOs (/dev/null, /dev/stdout), which are written in place and may be shared.
+std::optional<std::string> output_identity(const std::filesystem::path& path);
 
 /// True when `a` and `b` name the same output file (after resolving "..", symbolic links and
 /// hard links). Devices and FIFOs (/dev/null, /dev/stdout) are never the same output.

@@ -152,11 +152,11 @@ def section(args, results, json_path, markdown_text, elapsed, loads):
         "refits its boxes bottom-up with the same conservative triangle bounds; Embree "
         "(packet8) builds a new scene at medium quality, commits a dynamic scene at low quality, "
         "or refits with `RTC_BUILD_QUALITY_REFIT`; EDACRT and DACRT keep no structure and only "
-        "gather the triangles, with EDACRT's default 0.3 pre-split pieces or without) plus the "
-        "trace of the same camera rays; methods interleaved with the first to go rotating, "
-        "medians over the frames. The hits of every method are compared with EDACRT's on every "
-        f"frame (all agree: {'yes' if results['agreement_ok'] else 'NO'}). `x edacrt` is the "
-        "frame time over EDACRT's.",
+        "gather the triangles, with EDACRT's default pre-split pieces (`--presplit`) or without) "
+        "plus the trace of the same camera rays; methods interleaved with the first to go "
+        "rotating, medians over the frames. The hits of every method are compared with EDACRT's "
+        f"on every frame (all agree: {'yes' if results['agreement_ok'] else 'NO'}). `x edacrt` is "
+        "the frame time over EDACRT's.",
         "",
         f"Camera rays at {s['width']}x{s['height']} pixels:",
         "",

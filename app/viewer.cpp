@@ -167,13 +167,17 @@ int run_viewer(const ViewerOptions& options) {
         for (const std::string& p : problems)
             std::cerr << "edacrt_viewer: warning: " << printable(p) << "\n";
         if (!problems.empty()) {
+            const std::string what_happens_next =
+                s.bookmarks.unreadable()
+                    ? "; it is left as it is and bookmarks are not saved"
+                    : "; the file is moved to a .bak before bookmarks are next saved";
             s.status = problems.front() +
                        (problems.size() > 1
                             ? " (and " + std::to_string(problems.size() - 1) + " more on stderr)"
                             : std::string()) +
-                       "; the file is copied to a .bak before bookmarks are next saved";
-            std::cerr << "edacrt_viewer: warning: " << printable(s.bookmarks_path)
-                      << ": copied to a .bak before bookmarks are next saved\n";
+                       what_happens_next;
+            std::cerr << "edacrt_viewer: warning: " << printable(s.bookmarks_path) << ":"
+                      << what_happens_next.substr(1) << "\n";
         }
     }
     const std::filesystem::path assets = options.assets_dir.empty()

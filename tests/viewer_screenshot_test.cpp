@@ -376,7 +376,7 @@ TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
                           "--bookmarks " + (dir / "bookmarks.json").string() + " builtin:cornell");
     EXPECT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("[0]: skipped"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("copied to a .bak before bookmarks are next saved"),
+    EXPECT_NE(result.output.find("moved to a .bak before bookmarks are next saved"),
               std::string::npos)
         << result.output;
     std::ifstream in(dir / "bookmarks.json");

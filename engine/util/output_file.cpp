@@ -33,6 +33,9 @@ fs::path rename_target(const fs::path& path) {
     std::error_code ec;
     if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
     const fs::path target = fs::canonical(path, ec);
+    // A loop names no file to write: replacing it would silently undo someone's links.
+    if (ec == std::errc::too_many_symbolic_link_levels)
+        throw InputError(path.string() + ": a loop of symbolic links; not replaced");
     return ec ? path : target;  // a dangling link: replaced by the file
 }
 

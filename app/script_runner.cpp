@@ -180,6 +180,7 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
                       << " " << s.layout.image.h << "\n";
         } else if (c.verb == "layout") {
             try {
+                check_output_spares_inputs(s, c.args[0], "layout");
                 create_parent_folders(c.args[0]);
                 write_file(c.args[0], layout_json(s), "layout");
             } catch (const InputError& e) {
@@ -195,6 +196,7 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
             return;  // saved in the next frame, one file per frame
         } else if (c.verb == "write-command") {
             try {
+                check_output_spares_inputs(s, c.args[0], "write-command");
                 create_parent_folders(c.args[0]);
                 write_file(c.args[0], s.command_line + "\n", "command line");
             } catch (const InputError& e) {

@@ -126,6 +126,7 @@ int run_viewer(const ViewerOptions& options) {
         s.ui.integrator = options.integrator;
         s.ui.spp_target = options.spp;
         if (!options.script.empty()) script.emplace(load_script(options.script));
+        s.script_path = options.script;
     } catch (const std::exception& e) {
         std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         return 1;
@@ -436,6 +437,7 @@ int run_viewer(const ViewerOptions& options) {
             // linear render.
             const auto save_shown = [&] {
                 const std::string path = s.save_path.empty() ? timestamped(s, ".png") : s.save_path;
+                check_output_spares_inputs(s, path, "save-view");
                 save_framebuffer(path, region.x, region.y, region.w, region.h, fb_height);
                 s.status = "saved " + path;
                 std::cout << "saved " << printable(path) << "\n";
@@ -452,6 +454,7 @@ int run_viewer(const ViewerOptions& options) {
                 if (save == ViewerState::Save::linear) {
                     const std::string path =
                         s.save_path.empty() ? timestamped(s, ".exr") : s.save_path;
+                    check_output_spares_inputs(s, path, "save-linear");
                     save_image(path, s.frame->image, save_settings(s));
                     s.status = "saved " + path;
                     std::cout << "saved " << printable(path) << "\n";
@@ -492,6 +495,7 @@ int run_viewer(const ViewerOptions& options) {
                     quit = true;
                 }
                 if (!screenshot.empty()) {
+                    check_output_spares_inputs(s, screenshot, "screenshot");
                     save_framebuffer(screenshot, 0, 0, fb_width, fb_height, fb_height);
                     std::cout << "screenshot " << printable(screenshot) << " (" << fb_width << "x"
                               << fb_height << ", " << shown_spp << " spp, frame " << frame_number

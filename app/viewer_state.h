@@ -126,6 +126,7 @@ struct ViewerState {
     std::string scene_path;       // the path field
     std::string animation_spec;   // how the scene is animated (empty: still); see Playback
     std::string animation_field;  // the Scene tab's animation spec being edited
+    std::string script_path;      // the script being run, if any: no output may replace it
     Playback playback;
     SceneCatalog scene_list;
     Camera scene_camera;  // for "reset view"

@@ -13,9 +13,11 @@
 #include "bookmarks.h"
 #include "scene_catalog.h"
 #include "script.h"
+#include "script_runner.h"
 #include "temp_dir.h"
 #include "util/error.h"
 #include "util/output_file.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
@@ -26,6 +28,16 @@ using test::TempDir;
 std::string bytes_of(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
+}
+
+template <typename F>
+std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 std::string entry(const std::string& name, const std::string& fov = "45") {
@@ -230,6 +242,65 @@ TEST(Bookmarks, ALoopOfSymbolicLinksIsWarnedAboutAndNotReplaced) {
     // Any output refuses a loop (OutputFile), not only bookmarks.
     EXPECT_THROW(write_file(a, "x", "test file"), InputError);
     EXPECT_TRUE(fs::is_symlink(a));
+}
+
+// No output of the viewer (layout, write-command, save-view, save-linear, screenshot, bookmarks)
+// may replace a file it reads: the scene OBJ, its MTL library, the animation file and the
+// meshes it names, the script being run, the bookmarks file; through a link too.
+TEST(ViewerFiles, OutputsNeverReplaceTheViewersInputs) {
+    const TempDir dir;
+    const fs::path mtl = dir.write("box.mtl", "newmtl red\nKd 1 0 0\n");
+    const fs::path obj = dir.write("box.obj",
+                                   "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                   "usemtl red\nf 1 2 3\n");
+    const fs::path animation = dir.write(
+        "anim.json", R"({"objects": [{"mesh": "box.obj", "keys": [{"time": 0}, {"time": 1}]}]})");
+    const fs::path script = dir.write("script.txt", "quit\n");
+    const fs::path bookmarks = dir.write("bookmarks.json", bookmarks_file(1));
+    fs::create_symlink(obj, dir.path() / "link.obj");
+    ViewerState s;
+    s.script_path = script.string();
+    s.bookmarks_path = bookmarks.string();
+    for (const fs::path& scene : {obj, animation}) {
+        load_into(s, scene.string());
+        ASSERT_TRUE(s.scene) << s.scene_error;
+        for (const fs::path& input : {obj, mtl, script, bookmarks, dir.path() / "link.obj"})
+            for (const char* what : {"layout", "write-command", "save-view", "screenshot"}) {
+                const std::string error =
+                    error_of([&] { check_output_spares_inputs(s, input.string(), what); });
+                EXPECT_NE(error.find(": writing it would replace what is read"), std::string::npos)
+                    << what << " " << input << ": " << error;
+            }
+        EXPECT_EQ(error_of([&] {
+                      check_output_spares_inputs(s, (dir.path() / "x.png").string(), "save-view");
+                  }),
+                  "");
+    }
+    EXPECT_NE(error_of([&] {
+                  check_output_spares_inputs(s, animation.string(), "save-linear");
+              }).find("save-linear " + animation.string() + " is the scene's input"),
+              std::string::npos);
+    // The bookmarks file is the one output that may replace itself.
+    EXPECT_EQ(error_of([&] { check_output_spares_inputs(s, bookmarks.string(), "bookmarks"); }),
+              "");
+    // The script's writes fail at their line and leave the file as it was.
+    const std::string obj_text = bytes_of(obj);
+    for (const std::string verb : {"layout", "write-command"}) {
+        ScriptRunner runner(parse_script(verb + " " + obj.string() + "\n", "s"));
+        std::string screenshot;
+        bool quit = false;
+        EXPECT_NE(error_of([&] {
+                      runner.step(s, {}, screenshot, quit);
+                  }).find("script line 1: " + verb + " " + obj.string() + " is the scene's"),
+                  std::string::npos)
+            << verb;
+        EXPECT_EQ(bytes_of(obj), obj_text);
+    }
+    s.bookmarks_path = mtl.string();
+    const std::string mtl_text = bytes_of(mtl);
+    EXPECT_NE(error_of([&] { save_bookmark(s, "front"); }).find("bookmarks not saved: "),
+              std::string::npos);
+    EXPECT_EQ(bytes_of(mtl), mtl_text);
 }
 
 TEST(ViewerFiles, AScriptMustBeARegularFile) {

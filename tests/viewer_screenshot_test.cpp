@@ -552,6 +552,13 @@ TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
         {"set c-i 0\nwait-spp 2\nquit\n",
          "edacrt_viewer: error: script line 2: the render failed: EDACRT parameter c-i (C_I) "
          "must be positive"},
+        // An output over the script being run (tests/viewer_files_test.cpp: every input).
+        {"wait-spp 1\nsave-view " + (dir.path() / "script.txt").string() + "\nquit\n",
+         "edacrt_viewer: error: script line 2: save-view " + (dir.path() / "script.txt").string() +
+             " is the script input: writing it would replace what is read"},
+        {"wait-spp 1\nscreenshot " + (dir.path() / "script.txt").string() + "\nquit\n",
+         "edacrt_viewer: error: screenshot " + (dir.path() / "script.txt").string() +
+             " is the script input"},
     };
     for (const auto& c : cases) {
         const auto start = std::chrono::steady_clock::now();
@@ -561,6 +568,8 @@ TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.script << "\n"
                                                                     << result.output;
         EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::minutes(1));
+        std::ifstream script(dir.path() / "script.txt");
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(script), {}), c.script);
     }
 }
 

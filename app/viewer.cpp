@@ -157,9 +157,16 @@ int run_viewer(const ViewerOptions& options) {
             std::cerr << "edacrt_viewer: error: " << printable(s.playback.error) << "\n";
             return 1;
         }
-    } else if (!options.animate.empty() || options.play || options.time != 0.0) {
-        std::cerr << "edacrt_viewer: error: --time and --play need an animated scene "
-                     "(--animate, or an animation file)\n";
+    } else if (!options.animate.empty() || options.play || options.time != 0.0 ||
+               !options.animation_flags.empty()) {
+        std::string given;
+        for (const std::string& flag : options.animation_flags)
+            given += (given.empty() ? "" : ", ") + flag;
+        std::cerr << "edacrt_viewer: error: "
+                  << (given.empty()
+                          ? "--time and --play need"
+                          : given + (options.animation_flags.size() == 1 ? " needs" : " need"))
+                  << " an animated scene (--animate, or an animation file)\n";
         return flags::kExitUsageError;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
@@ -299,6 +306,7 @@ int run_viewer(const ViewerOptions& options) {
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
+                s.render_answered = true;
                 if (!frame->error.empty() && s.playback.playing) {  // no frame to wait for
                     s.playback.playing = false;
                     s.playback.error = frame->error;
@@ -347,6 +355,7 @@ int run_viewer(const ViewerOptions& options) {
                     submitted = request;
                     request_id = worker.submit(std::move(request));
                     s.render_error.clear();  // the previous request's
+                    s.render_answered = false;
                 }
             }
             s.command_line = render_command_line(

@@ -134,7 +134,8 @@ struct ViewerState {
 
     std::shared_ptr<const Frame> frame;  // shown
     std::string render_error;
-    std::string resolution_error;            // the last resolution refused (too much memory)
+    bool render_answered = false;  // the worker has published a frame or error for `submitted`
+    std::string resolution_error;  // the last resolution refused (too much memory)
     float accepted_resolution_scale = 1.0f;  // the slider returns here after a refusal
     std::vector<MethodTotals> comparison;
     bool comparing = false;                  // the render pauses meanwhile

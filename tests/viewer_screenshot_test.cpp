@@ -595,6 +595,28 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
         EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
         EXPECT_EQ(result.output.rfind("edacrt_viewer: error: ", 0), 0u) << result.output;
     }
+    // Animation flags without an animation, as edacrt refuses --frames/--time/--shutter: one
+    // line naming the flag.
+    for (const char* flag : {"--shutter 0.1", "--speed 2", "--update rebuild"}) {
+        const auto result =
+            test::run_command("timeout 20 " EDACRT_VIEWER " builtin:sphere " + std::string(flag));
+        EXPECT_EQ(result.exit_code, 2) << flag << "\n" << result.output;
+        EXPECT_EQ(result.output, "edacrt_viewer: error: " +
+                                     std::string(flag).substr(0, std::string(flag).find(' ')) +
+                                     " needs an animated scene (--animate, or an animation "
+                                     "file)\n");
+    }
+    // An unknown animation lists the kinds on one line (its help had \x0A for newlines).
+    const auto bogus =
+        test::run_command("timeout 20 " EDACRT_VIEWER " builtin:sphere --animate bogus");
+    EXPECT_NE(bogus.exit_code, 0);
+    EXPECT_EQ(bogus.output.rfind("edacrt_viewer: error: unknown animation 'bogus'; available: "
+                                 "wave[:",
+                                 0),
+              0u)
+        << bogus.output;
+    EXPECT_EQ(std::count(bogus.output.begin(), bogus.output.end(), '\n'), 1) << bogus.output;
+    EXPECT_EQ(bogus.output.find("\\x0A"), std::string::npos) << bogus.output;
 }
 
 // Names from files (a script's words, a scene path) reach the terminal escaped: an ESC byte

@@ -1,6 +1,11 @@
 #include "bookmarks.h"
 
+#include <fcntl.h>
+
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -42,6 +47,19 @@ std::string without_trailing_commas(std::string_view text) {
     return out;
 }
 
+/// Renames `from` to `to` unless `to` exists (then fails with EEXIST); 0 or -1 as rename().
+int rename_no_replace(const std::filesystem::path& from, const std::filesystem::path& to) {
+    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return 0;
+    if (errno != EINVAL && errno != ENOSYS) return -1;
+    // A file system without RENAME_NOREPLACE: look first (racing only another writer).
+    std::error_code error;
+    if (std::filesystem::exists(std::filesystem::symlink_status(to, error))) {
+        errno = EEXIST;
+        return -1;
+    }
+    return std::rename(from.c_str(), to.c_str());
+}
+
 }  // namespace
 
 std::string Bookmarks::default_path() {
@@ -67,13 +85,23 @@ std::string Bookmarks::scene_key(const std::string& spec) {
 std::vector<std::string> Bookmarks::load(const std::string& path) {
     by_scene_.clear();
     damaged_ = false;
+    unreadable_ = false;
     std::vector<std::string> problems;
     const auto problem = [&](const std::string& what) {
         problems.push_back(path + ": " + what);
         damaged_ = true;
     };
     std::error_code error;
-    if (!std::filesystem::exists(path, error)) return problems;
+    if (!std::filesystem::exists(path, error)) {
+        // Missing is no bookmarks; a loop of symbolic links (or a folder that cannot be
+        // searched) is a file that exists but cannot be read, and must not be replaced.
+        if (error && error != std::errc::no_such_file_or_directory &&
+            error != std::errc::not_a_directory) {
+            problem("cannot read the bookmarks file (" + error.message() + ")");
+            unreadable_ = true;
+        }
+        return problems;
+    }
     json root;
     try {
         const std::string text = read_text_file(path, "bookmarks file", kMaxBookmarksBytes);
@@ -116,6 +144,10 @@ std::vector<std::string> Bookmarks::load(const std::string& path) {
 }
 
 std::string Bookmarks::save(const std::string& path) {
+    if (unreadable_)
+        throw InputError(path +
+                         ": the file could not be read when loaded (see the warning then); "
+                         "not replaced");
     json scenes = json::object();
     for (const auto& [scene, list] : by_scene_) {
         json entries = json::array();
@@ -127,23 +159,46 @@ std::string Bookmarks::save(const std::string& path) {
                                {"fov", b.camera.vfov_degrees}});
         if (!entries.empty()) scenes[scene] = std::move(entries);
     }
+    namespace fs = std::filesystem;
     std::error_code error;
-    const std::filesystem::path file(path);
+    const fs::path file(path);
+    fs::path damaged_file;  // the damaged content, moved to `backup` while the new one is written
     std::string backup;
-    if (damaged_ && std::filesystem::exists(file, error)) {
-        // What could not be read must not be lost: a copy first, never over an older one.
-        backup = path + ".bak";
-        for (int n = 1; std::filesystem::exists(backup, error); ++n)
-            backup = path + ".bak." + std::to_string(n);
-        if (!std::filesystem::copy_file(file, backup, error))
+    if (damaged_ && fs::exists(file, error)) {
+        if (!fs::is_regular_file(file, error))
+            throw InputError(path + ": not a regular file; not replaced by bookmarks");
+        // What could not be read must not be lost: renamed aside (atomic, and no copy to run
+        // out of space or time on, whatever its size), never over an older backup. A symbolic
+        // link stays; the file it names is moved.
+        damaged_file =
+            fs::is_symlink(fs::symlink_status(file, error)) ? fs::canonical(file, error) : file;
+        if (error)
+            throw InputError(path + ": cannot resolve the link to the damaged file (" +
+                             error.message() + ")");
+        int result = -1;
+        for (int n = 0; n < 1000 && result != 0; ++n) {
+            backup = damaged_file.string() + ".bak" + (n ? "." + std::to_string(n) : "");
+            result = rename_no_replace(damaged_file, backup);
+            if (result != 0 && errno != EEXIST) break;
+        }
+        if (result != 0)
             throw InputError(path +
-                             ": bookmarks not saved: cannot keep a copy of the damaged "
-                             "file as " +
-                             backup + " (" + error.message() + ")");
+                             ": bookmarks not saved: cannot move the damaged file aside "
+                             "to " +
+                             backup + " (" + std::strerror(errno) + ")");
+    }
+    if (file.has_parent_path()) fs::create_directories(file.parent_path(), error);
+    try {
+        // Where the damaged file was: a link to it now dangles, and would be replaced.
+        write_file(damaged_file.empty() ? file : damaged_file,
+                   json{{"version", 1}, {"scenes", scenes}}.dump(2) + "\n", "bookmarks");
+    } catch (const InputError& e) {
+        // The damaged file goes back where it was, so nothing is left beside it.
+        if (!backup.empty() && rename_no_replace(backup, damaged_file) != 0)
+            throw InputError(std::string(e.what()) + "; the damaged file is kept as " + backup);
+        throw;
     }
     damaged_ = false;
-    if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), error);
-    write_file(file, json{{"version", 1}, {"scenes", scenes}}.dump(2) + "\n", "bookmarks");
     return backup;
 }
 

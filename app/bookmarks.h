@@ -21,15 +21,19 @@ class Bookmarks {
 
     /// Reads the file; a missing file is no bookmarks. Keeps every entry that can be read and
     /// returns one message per problem (a bad entry skipped, a file that cannot be read or
-    /// parsed). A file with problems is damaged(): the next save() keeps a copy of it first.
+    /// parsed). A file with problems is damaged(): the next save() moves it to a backup first.
+    /// A path that exists but cannot be read at all (a loop of symbolic links) is never saved.
     std::vector<std::string> load(const std::string& path);
     /// Writes the file whole or not at all (util/output_file.h), creating its folder. A damaged
-    /// file is first copied to a backup beside it, whose path is returned (else empty). Throws
-    /// InputError when the backup or the write fails; the file on disk is then unchanged.
+    /// file is first renamed to a backup beside it (`.bak`, else `.bak.1`, ...), whose path is
+    /// returned (else empty). Throws InputError when the backup or the write fails; the file
+    /// on disk is then unchanged and no backup left.
     std::string save(const std::string& path);
 
     /// True when the file loaded had problems and has not been backed up yet.
     bool damaged() const { return damaged_; }
+    /// True when the file exists but could not be read at all: save() refuses to replace it.
+    bool unreadable() const { return unreadable_; }
 
     /// The bookmarks of a scene (keyed by its absolute path, or the built-in spec).
     const std::vector<Bookmark>& of(const std::string& scene) const;
@@ -43,6 +47,7 @@ class Bookmarks {
   private:
     std::map<std::string, std::vector<Bookmark>> by_scene_;
     bool damaged_ = false;
+    bool unreadable_ = false;
 };
 
 }  // namespace edacrt::app

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
                    "motion blur: seconds of shutter around the frame's time (0: none)")
         ->group(group);
     if (const auto status = edacrt::flags::parse_command_line(app, argc, argv)) return *status;
+    for (const char* flag : {"--time", "--play", "--speed", "--update", "--shutter"})
+        if (app.count(flag) > 0) o.animation_flags.emplace_back(flag);
     // What escapes the viewer's own reports is a bug: an internal error, not an abort.
     return edacrt::flags::run_reporting_errors("edacrt_viewer",
                                                [&] { return edacrt::app::run_viewer(o); });

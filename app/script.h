@@ -7,7 +7,8 @@
 //   view NAME          render | box | triangle | depth | order
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   wait-loaded        until the scenes asked for (set scene) are loaded and the render asked
-//                      for; fails the script with the error when the last load failed
+//                      for has begun (its first frame or its error); fails the script with the
+//                      error when the last load or that render failed
 //   wait-error         until an error message is on screen (drawn by the panels in the last
 //                      frame; with the panels hidden, one they would show: scene, resolution,
 //                      render or animation) and prints it ("error shown: ...")

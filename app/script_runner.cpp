@@ -115,8 +115,11 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
             // after the panels are drawn.
             const bool tried = s.pending_loads.empty();
             if (tried && !s.scene_error.empty()) fail("the scene did not load: " + s.scene_error);
-            if (waiting(tried && s.scene && s.submitted.scene == s.scene, c, "the scene to load"))
-                return;
+            // Loaded means the tracer took it too: a method that refuses the scene (Embree past
+            // its range) fails here as the other waits fail, not at the next wait.
+            const bool submitted = tried && s.scene && s.submitted.scene == s.scene;
+            if (submitted) render_failed();
+            if (waiting(submitted && s.render_answered, c, "the scene to load")) return;
         } else if (c.verb == "wait-error") {
             std::string error;
             if (!s.errors_shown.empty()) error = s.errors_shown.front();
@@ -180,6 +183,7 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
                       << " " << s.layout.image.h << "\n";
         } else if (c.verb == "layout") {
             try {
+                check_output_spares_inputs(s, c.args[0], "layout");
                 create_parent_folders(c.args[0]);
                 write_file(c.args[0], layout_json(s), "layout");
             } catch (const InputError& e) {
@@ -195,6 +199,7 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
             return;  // saved in the next frame, one file per frame
         } else if (c.verb == "write-command") {
             try {
+                check_output_spares_inputs(s, c.args[0], "write-command");
                 create_parent_folders(c.args[0]);
                 write_file(c.args[0], s.command_line + "\n", "command line");
             } catch (const InputError& e) {

@@ -126,6 +126,7 @@ int run_viewer(const ViewerOptions& options) {
         s.ui.integrator = options.integrator;
         s.ui.spp_target = options.spp;
         if (!options.script.empty()) script.emplace(load_script(options.script));
+        s.script_path = options.script;
     } catch (const std::exception& e) {
         std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
         return 1;
@@ -156,9 +157,16 @@ int run_viewer(const ViewerOptions& options) {
             std::cerr << "edacrt_viewer: error: " << printable(s.playback.error) << "\n";
             return 1;
         }
-    } else if (!options.animate.empty() || options.play || options.time != 0.0) {
-        std::cerr << "edacrt_viewer: error: --time and --play need an animated scene "
-                     "(--animate, or an animation file)\n";
+    } else if (!options.animate.empty() || options.play || options.time != 0.0 ||
+               !options.animation_flags.empty()) {
+        std::string given;
+        for (const std::string& flag : options.animation_flags)
+            given += (given.empty() ? "" : ", ") + flag;
+        std::cerr << "edacrt_viewer: error: "
+                  << (given.empty()
+                          ? "--time and --play need"
+                          : given + (options.animation_flags.size() == 1 ? " needs" : " need"))
+                  << " an animated scene (--animate, or an animation file)\n";
         return flags::kExitUsageError;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
@@ -167,13 +175,17 @@ int run_viewer(const ViewerOptions& options) {
         for (const std::string& p : problems)
             std::cerr << "edacrt_viewer: warning: " << printable(p) << "\n";
         if (!problems.empty()) {
+            const std::string what_happens_next =
+                s.bookmarks.unreadable()
+                    ? "; it is left as it is and bookmarks are not saved"
+                    : "; the file is moved to a .bak before bookmarks are next saved";
             s.status = problems.front() +
                        (problems.size() > 1
                             ? " (and " + std::to_string(problems.size() - 1) + " more on stderr)"
                             : std::string()) +
-                       "; the file is copied to a .bak before bookmarks are next saved";
-            std::cerr << "edacrt_viewer: warning: " << printable(s.bookmarks_path)
-                      << ": copied to a .bak before bookmarks are next saved\n";
+                       what_happens_next;
+            std::cerr << "edacrt_viewer: warning: " << printable(s.bookmarks_path) << ":"
+                      << what_happens_next.substr(1) << "\n";
         }
     }
     const std::filesystem::path assets = options.assets_dir.empty()
@@ -294,6 +306,7 @@ int run_viewer(const ViewerOptions& options) {
 
             if (auto frame = worker.latest(); frame && frame->request == request_id) {
                 s.render_error = frame->error;
+                s.render_answered = true;
                 if (!frame->error.empty() && s.playback.playing) {  // no frame to wait for
                     s.playback.playing = false;
                     s.playback.error = frame->error;
@@ -342,6 +355,7 @@ int run_viewer(const ViewerOptions& options) {
                     submitted = request;
                     request_id = worker.submit(std::move(request));
                     s.render_error.clear();  // the previous request's
+                    s.render_answered = false;
                 }
             }
             s.command_line = render_command_line(
@@ -432,6 +446,7 @@ int run_viewer(const ViewerOptions& options) {
             // linear render.
             const auto save_shown = [&] {
                 const std::string path = s.save_path.empty() ? timestamped(s, ".png") : s.save_path;
+                check_output_spares_inputs(s, path, "save-view");
                 save_framebuffer(path, region.x, region.y, region.w, region.h, fb_height);
                 s.status = "saved " + path;
                 std::cout << "saved " << printable(path) << "\n";
@@ -448,6 +463,7 @@ int run_viewer(const ViewerOptions& options) {
                 if (save == ViewerState::Save::linear) {
                     const std::string path =
                         s.save_path.empty() ? timestamped(s, ".exr") : s.save_path;
+                    check_output_spares_inputs(s, path, "save-linear");
                     save_image(path, s.frame->image, save_settings(s));
                     s.status = "saved " + path;
                     std::cout << "saved " << printable(path) << "\n";
@@ -488,6 +504,7 @@ int run_viewer(const ViewerOptions& options) {
                     quit = true;
                 }
                 if (!screenshot.empty()) {
+                    check_output_spares_inputs(s, screenshot, "screenshot");
                     save_framebuffer(screenshot, 0, 0, fb_width, fb_height, fb_height);
                     std::cout << "screenshot " << printable(screenshot) << " (" << fb_width << "x"
                               << fb_height << ", " << shown_spp << " spp, frame " << frame_number

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 #include "render/camera_options.h"
 #include "render/render_settings.h"
@@ -28,6 +29,9 @@ struct ViewerOptions {
     double speed = 1.0;
     SceneUpdate update = SceneUpdate::refit;
     double shutter = 0.0;  // > 0: motion blur
+    // The animation flags given on the command line ("--speed", ...): without an animation
+    // they are refused, as edacrt refuses --frames, --time and --shutter.
+    std::vector<std::string> animation_flags;
 };
 
 /// Opens the window and runs until it is closed (or the frames / script end). Returns the

@@ -12,6 +12,7 @@
 #include "render/render_memory.h"
 #include "render/wavefront.h"
 #include "util/error.h"
+#include "util/output_file.h"
 #include "util/printable.h"
 
 namespace edacrt::app {
@@ -263,6 +264,16 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
     return a;
 }
 
+void check_output_spares_inputs(const ViewerState& s, const std::string& path,
+                                const std::string& what) {
+    std::vector<NamedPath> inputs;
+    if (s.scene)
+        for (const std::string& file : s.scene->inputs) inputs.push_back({"scene's", file});
+    inputs.push_back({"script", s.script_path});
+    if (what != "bookmarks") inputs.push_back({"bookmarks", s.bookmarks_path});
+    check_distinct_files({{what, path}}, inputs);
+}
+
 namespace {
 
 /// Writes the bookmarks file; the status line says where.
@@ -271,6 +282,7 @@ void write_bookmarks(ViewerState& s) {
         throw InputError("bookmarks not saved: neither XDG_CONFIG_HOME nor HOME is set");
     std::string backup;
     try {
+        check_output_spares_inputs(s, s.bookmarks_path, "bookmarks");
         backup = s.bookmarks.save(s.bookmarks_path);
     } catch (const InputError& e) {
         throw InputError(std::string("bookmarks not saved: ") + e.what());

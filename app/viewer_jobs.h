@@ -73,6 +73,13 @@ void save_bookmark(ViewerState& state, const std::string& name);
 /// Removes the scene's bookmark `name` and writes the file; throws as save_bookmark() does.
 void remove_bookmark(ViewerState& state, const std::string& name);
 
+/// Throws InputError when the output `path` (written by `what`: "screenshot", "layout", ...)
+/// is a file the viewer reads: the scene's files (OBJ, MTL libraries, animation file, key
+/// frames: Scene::inputs), the script being run, or (unless `what` is the bookmarks file
+/// itself) the bookmarks file; through links too (check_distinct_files()).
+void check_output_spares_inputs(const ViewerState& state, const std::string& path,
+                                const std::string& what);
+
 /// SAVE_DIR/SCENE-YYYYmmdd-HHMMSS.EXT.
 std::string timestamped(const ViewerState& state, const std::string& extension);
 

@@ -126,6 +126,7 @@ struct ViewerState {
     std::string scene_path;       // the path field
     std::string animation_spec;   // how the scene is animated (empty: still); see Playback
     std::string animation_field;  // the Scene tab's animation spec being edited
+    std::string script_path;      // the script being run, if any: no output may replace it
     Playback playback;
     SceneCatalog scene_list;
     Camera scene_camera;  // for "reset view"
@@ -133,7 +134,8 @@ struct ViewerState {
 
     std::shared_ptr<const Frame> frame;  // shown
     std::string render_error;
-    std::string resolution_error;            // the last resolution refused (too much memory)
+    bool render_answered = false;  // the worker has published a frame or error for `submitted`
+    std::string resolution_error;  // the last resolution refused (too much memory)
     float accepted_resolution_scale = 1.0f;  // the slider returns here after a refusal
     std::vector<MethodTotals> comparison;
     bool comparing = false;                  // the render pauses meanwhile

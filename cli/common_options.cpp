@@ -118,30 +118,6 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats) {
     write_file(options.stats_path, json_text(stats), "statistics");
 }
 
-void check_distinct_files(const std::vector<NamedPath>& outputs,
-                          const std::vector<NamedPath>& inputs) {
-    // By identity (util/output_file.h), so that thousands of frames cost no pairwise checks.
-    std::map<std::string, const NamedPath*> written;
-    for (const NamedPath& out : outputs) {
-        if (out.path.empty()) continue;
-        const std::optional<std::string> id = output_identity(out.path);
-        if (!id) continue;
-        const auto [at, fresh] = written.emplace(*id, &out);
-        if (!fresh)
-            throw InputError(at->second->option + " and " + out.option + " both name " +
-                             at->second->path + ": give each output a file of its own");
-    }
-    for (const NamedPath& in : inputs) {
-        if (in.path.empty() || in.path.starts_with("builtin:")) continue;
-        const std::optional<std::string> id = output_identity(in.path);
-        if (!id) continue;
-        if (const auto at = written.find(*id); at != written.end())
-            throw InputError(at->second->option + " " + at->second->path + " is the " + in.option +
-                             " input" + (in.path == at->second->path ? "" : " " + in.path) +
-                             ": writing it would replace what is read");
-    }
-}
-
 void check_outputs_spare_scene(const std::vector<NamedPath>& outputs, const Scene& scene) {
     std::vector<NamedPath> inputs;
     for (const std::string& file : scene.inputs) inputs.push_back({"scene's", file});

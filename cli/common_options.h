@@ -14,6 +14,7 @@
 #include "scene/scene.h"
 #include "trace/edacrt_params.h"
 #include "trace/tracer.h"
+#include "util/output_file.h"
 
 namespace edacrt::cli {
 
@@ -47,18 +48,7 @@ void write_stats(const CommonOptions& options, const nlohmann::json& stats);
 /// fails now rather than at its end. Empty: nothing to check.
 void check_writable(const std::string& path, const char* option);
 
-/// A file a command names on its command line: the option and its value.
-struct NamedPath {
-    std::string option;  // "--out"
-    std::string path;    // empty: not given
-};
-
-/// Throws InputError before any work when two outputs name the same file (the second would
-/// silently replace the first), or an output names an input (read, then overwritten), through
-/// symbolic or hard links too. Devices such as /dev/null and /dev/stdout may be shared; inputs
-/// that are not files (builtin:...) are skipped.
-void check_distinct_files(const std::vector<NamedPath>& outputs,
-                          const std::vector<NamedPath>& inputs = {});
+// NamedPath and check_distinct_files(): util/output_file.h (the viewer checks its outputs too).
 
 /// The same for the files a scene's loading read besides those on the command line (its MTL
 /// libraries, the meshes of an animation file, key frames: Scene::inputs), once it is loaded

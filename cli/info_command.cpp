@@ -67,10 +67,18 @@ nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, co
     const std::uint64_t renderer = render_memory_bytes(
         settings, sizeof(glm::vec3) + save_image_bytes_per_pixel(ImageFormat::png));
     nlohmann::json scene_bytes = nlohmann::json::object();
+    nlohmann::json cannot_trace = nlohmann::json::object();
     for (const EnumEntry<Method>& method : kMethods) {
         const auto tracer = make_tracer(method.value);
-        tracer->set_scene(scene);
-        scene_bytes[std::string(method.name)] = tracer->working_bytes();
+        // info traces nothing: a method that refuses the scene (Embree past its range) is
+        // something to report, not a reason to report nothing.
+        try {
+            tracer->set_scene(scene);
+            scene_bytes[std::string(method.name)] = tracer->working_bytes();
+        } catch (const InputError& e) {
+            scene_bytes[std::string(method.name)] = nullptr;
+            cannot_trace[std::string(method.name)] = e.what();
+        }
     }
     return {{"scene", scene.source},
             {"triangles", s.triangles},
@@ -97,6 +105,7 @@ nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, co
               {"samples_per_pass", settings.samples_per_pass},
               {"renderer_bytes", renderer},
               {"tracer_scene_bytes", scene_bytes},
+              {"methods_that_cannot_trace", cannot_trace},
               {"limit_bytes", memory_limit().bytes},
               {"limit_source", memory_limit().source}}},
             {"warnings", s.warnings}};
@@ -147,9 +156,11 @@ void print_text(const nlohmann::json& j) {
               << m["limit_source"].get<std::string>() << ")\n"
               << "               and the tracer's scene data:";
     for (const auto& [name, bytes] : m["tracer_scene_bytes"].items())
-        std::cout << " " << name << " " << format_bytes(bytes);
-    std::cout << "\n"
-              << "  warnings     " << j["warnings"].size() << "\n";
+        std::cout << " " << name << " " << (bytes.is_null() ? "-" : format_bytes(bytes));
+    std::cout << "\n";
+    for (const auto& [name, why] : m["methods_that_cannot_trace"].items())
+        std::cout << "  note         " << name << " cannot trace it: " << text(why) << "\n";
+    std::cout << "  warnings     " << j["warnings"].size() << "\n";
     for (const auto& w : j["warnings"]) std::cout << "    " << text(w) << "\n";
 }
 

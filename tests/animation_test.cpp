@@ -193,6 +193,9 @@ TEST(Animation, BadSpecsAreErrorsNamingTheParameter) {
     };
     EXPECT_TRUE(contains(error("ripple"), "unknown animation 'ripple'"));
     EXPECT_TRUE(contains(error("ripple"), "twist["));  // lists the kinds
+    // On one line: a terminal shows a message's newlines as \x0A (util/printable.h).
+    EXPECT_FALSE(contains(error("ripple"), "\n")) << error("ripple");
+    EXPECT_TRUE(contains(error("ripple"), ", sequence:[fps=F,]pattern=")) << error("ripple");
     EXPECT_TRUE(contains(error("wave:height=3"), "unknown option 'height'"));
     EXPECT_TRUE(contains(error("wave:amplitude=nan"), "amplitude must be a number in [0, 10]"));
     EXPECT_TRUE(contains(error("wave:amplitude=-1"), "amplitude"));

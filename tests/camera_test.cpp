@@ -175,6 +175,27 @@ TEST(CameraOptions, EachGivenSettingOverridesTheScenesView) {
     EXPECT_EQ(camera.up, scene_view.up);
     options.fov = {180.0f};
     EXPECT_THROW(choose_camera(scene, options), InputError);
+
+    // A default camera beyond float range names the scene and the flags that replace it.
+    Scene huge;
+    huge.source = "huge.obj";
+    huge.positions = {{1e38f, 0.0f, 0.0f}, {-1e38f, 0.0f, 0.0f}, {0.0f, 1e38f, 0.0f}};
+    huge.triangles = {{0, 1, 2}};
+    huge.triangle_materials = {0};
+    huge.materials.resize(1);
+    try {
+        choose_camera(huge, {});
+        ADD_FAILURE() << "a camera past the float limit was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "huge.obj: the default camera from its bounds is not finite (coordinates near "
+                  "the float limit); give --eye and --look-at");
+    }
+    CameraOptions given;
+    given.eye = {0.0f, 0.0f, 5.0f};
+    given.look_at = {0.0f, 0.0f, 0.0f};
+    given.up = {0.0f, 1.0f, 0.0f};
+    EXPECT_EQ(choose_camera(huge, given).eye, glm::vec3(0.0f, 0.0f, 5.0f));
     // One description per flag: the keys are the flags of both tools, each with help.
     std::vector<std::string> keys;
     for (const CameraParam& param : camera_params()) {

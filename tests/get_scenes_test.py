@@ -248,6 +248,21 @@ class Interrupting(unittest.TestCase):
         self.assertIn("removed 2 temporary files", result.stdout)
         self.assertEqual(self.everything(), ["plain", "plain/SOURCE.txt", "plain/tri.obj"])
 
+    def test_a_killed_runs_folder_goes_with_its_part_files_when_the_next_run_is_offline(self):
+        # A killed run made plain/ and zipped/sub/ for its downloads; the next run, offline,
+        # removes the part files and must not leave their folders empty.
+        for folder in [self.m.dest / "plain", self.m.dest / "zipped" / "sub"]:
+            folder.mkdir(parents=True)
+            (folder / ".f.4999999.abc123.part").write_bytes(b"half")
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        result = self.m.run("--mirror", f"http://127.0.0.1:{port}", mirror=False)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("removed 2 temporary files", result.stdout)
+        self.assertEqual(self.everything(), [])
+        self.assertTrue(self.m.dest.is_dir(), "the scenes folder itself is the user's")
+
     def test_offline_leaves_no_empty_folders(self):
         with socket.socket() as s:
             s.bind(("127.0.0.1", 0))

@@ -245,5 +245,37 @@ TEST(InfoCli, ManyMissingTexturesAreCappedWithACount) {
     EXPECT_EQ(info["warnings"].back(), obj.string() + ": ... and 40 more missing textures");
 }
 
+// info traces nothing, so a scene beyond Embree's range is described (the limit a note), and a
+// scene whose default camera overflows names itself and the flags that replace that camera.
+TEST(InfoCli, ASceneEmbreeCannotTraceIsDescribedAndAnOverflowingCameraNamed) {
+    const test::TempDir dir;
+    const auto far = dir.write("far.obj", "v 1e30 0 0\nv 1e30 1e-30 0\nv 1e30 0 1e-30\nf 1 2 3\n");
+    const auto text = test::run_cli("info " + far.string());
+    ASSERT_EQ(text.exit_code, 0) << text.output;
+    EXPECT_NE(text.output.find("triangles    1 "), std::string::npos) << text.output;
+#ifdef EDACRT_HAS_EMBREE
+    EXPECT_NE(text.output.find("note         embree cannot trace it: "), std::string::npos)
+        << text.output;
+    const auto json = test::run_cli("info --json " + far.string() + " 2>/dev/null");
+    ASSERT_EQ(json.exit_code, 0) << json.output;
+    const auto info = nlohmann::json::parse(json.output);
+    EXPECT_TRUE(info["memory"]["tracer_scene_bytes"]["embree"].is_null());
+    EXPECT_GT(info["memory"]["tracer_scene_bytes"]["edacrt"].get<std::uint64_t>(), 0u);
+    EXPECT_NE(info["memory"]["methods_that_cannot_trace"]["embree"].get<std::string>().find(
+                  "coordinates reach 1e+30"),
+              std::string::npos)
+        << info.dump(1);
+#endif
+
+    const auto huge = dir.write("huge.obj", "v 1e38 0 0\nv -1e38 0 0\nv 0 1e38 0\nf 1 2 3\n");
+    const auto refused = test::run_cli("info " + huge.string());
+    EXPECT_EQ(refused.exit_code, 1) << refused.output;
+    EXPECT_NE(refused.output.find(huge.string() +
+                                  ": the default camera from its bounds is not finite "
+                                  "(coordinates near the float limit); give --eye and --look-at"),
+              std::string::npos)
+        << refused.output;
+}
+
 }  // namespace
 }  // namespace edacrt

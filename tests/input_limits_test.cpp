@@ -3,12 +3,17 @@
 // and a message quotes a bad value only in part, escaped. (Every reader against such files:
 // special_files_test.cpp.)
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
+#include "sanitizers.h"
+#include "scene/obj_loader.h"
 #include "scene/rigid_animation.h"
 #include "temp_dir.h"
 #include "util/error.h"
@@ -76,6 +81,39 @@ TEST(InputFile, RefusesAFileOverItsCapWithItsSize) {
     EXPECT_NE(
         error_of([] { read_text_file("/proc/self/maps", "test file", 16); }).find("more than 16"),
         std::string::npos);
+}
+
+// A huge OBJ: a binary one (all NUL, sparse) is refused from its first block, not read whole
+// first (3 GB took 19 s); one larger than the memory fails naming the file, not with
+// "out of memory" or "std::bad_alloc".
+TEST(InputFile, AHugeObjIsRefusedNamingTheFile) {
+    const TempDir dir;
+    const fs::path zeros = dir.path() / "zeros.obj";
+    std::ofstream(zeros).close();
+    fs::resize_file(zeros, 4ull << 30);  // sparse: no disk used
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(
+        error_of([&] { load_obj(zeros); }),
+        zeros.string() + ": cannot read OBJ file (line 1: NUL byte; this is not a text file)");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+
+    // A text start and then more than the address space allowed here (ASan reserves terabytes
+    // of address space: no limit can be set under it).
+    if (test::kSanitized) return;
+    std::string text;
+    while (text.size() < (1 << 17)) text += "v 0 0 0\n";  // past the first block read
+    const fs::path big = dir.write("big.obj", text);
+    fs::resize_file(big, 64ull << 30);
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_AS, &old), 0);
+    rlimit limit = old;
+    limit.rlim_cur = std::min<rlim_t>(old.rlim_cur, 16ull << 30);
+    ASSERT_EQ(::setrlimit(RLIMIT_AS, &limit), 0);
+    const std::string message = error_of([&] { load_obj(big); });
+    ::setrlimit(RLIMIT_AS, &old);
+    EXPECT_EQ(message, big.string() +
+                           ": cannot read OBJ file (68719476736 bytes, more than the "
+                           "memory can hold)");
 }
 
 TEST(JsonLimits, DepthIsCountedOutsideStrings) {

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <future>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "cli_runner.h"
 #include "render/image_format.h"
+#include "scene/animation.h"
 #include "scene/obj_loader.h"
 #include "scene/rigid_animation.h"
 #include "temp_dir.h"
@@ -129,6 +131,36 @@ TEST(SpecialFiles, AMaterialLibraryThatIsNotAFileIsAWarning) {
                   std::string::npos)
             << s.kind << ": " << scene.warnings[0];
     }
+}
+
+// A key frame of an OBJ sequence that is not a file, in the middle or last: refused by name
+// (once the last was silently dropped, and one in the middle read as "is missing").
+TEST(SpecialFiles, AKeyFrameThatIsNotAFileIsRefusedByName) {
+    const TempDir dir;
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    int n = 0;
+    for (const bool last : {false, true})
+        for (const Special& s : make_specials(dir, ".obj")) {
+            const fs::path folder = dir.path() / ("seq" + std::to_string(n++));
+            fs::create_directory(folder);
+            std::ofstream(folder / "f_0000.obj") << obj;
+            if (!last) std::ofstream(folder / "f_0002.obj") << obj;
+            const fs::path frame = folder / "f_0001.obj";
+            fs::rename(s.path, frame);
+            if (fs::is_symlink(frame) && fs::read_symlink(frame) == s.path.filename()) {
+                fs::remove(frame);
+                fs::create_symlink(frame.filename(), frame);  // a loop under its new name
+            }
+            const std::string message = error_of(
+                [&] {
+                    load_animated_scene("", "sequence:pattern=" + folder.string() + "/f_%04d.obj");
+                },
+                frame);
+            EXPECT_NE(message.find(frame.string()), std::string::npos)
+                << s.kind << (last ? " last" : " in the middle") << ": " << message;
+            EXPECT_NE(message.find(s.because), std::string::npos)
+                << s.kind << (last ? " last" : " in the middle") << ": " << message;
+        }
 }
 
 TEST(SpecialFiles, EveryCommandRefusesThemAtOnce) {

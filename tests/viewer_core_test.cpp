@@ -339,7 +339,17 @@ TEST(Script, WaitLoadedFailsOnALoadError) {
     EXPECT_FALSE(quit) << "the render is not asked for yet";
     s.submitted.scene = s.scene;
     runner.step(s, {}, screenshot, quit);
+    EXPECT_FALSE(quit) << "the tracer has not taken the scene yet";
+    s.render_answered = true;
+    runner.step(s, {}, screenshot, quit);
     EXPECT_TRUE(quit);
+
+    // A method that refuses the scene (Embree past its range) fails the wait, as other waits.
+    s.render_error = "Embree cannot trace far.obj: coordinates reach 1e+30";
+    EXPECT_EQ(run_script(s, "wait-loaded\n"),
+              "script line 1: the render failed: Embree cannot trace far.obj: coordinates reach "
+              "1e+30");
+    s.render_error.clear();
 
     s.scene_error = "/no/such/scene.obj: no such file";
     EXPECT_EQ(run_script(s, "wait-loaded\n"),

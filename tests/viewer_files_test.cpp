@@ -2,17 +2,22 @@
 // they could not (a backup first), a save reports its failure; a script or scene manifest that
 // is a FIFO or a directory is refused without blocking.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 
 #include "bookmarks.h"
 #include "scene_catalog.h"
 #include "script.h"
+#include "script_runner.h"
 #include "temp_dir.h"
 #include "util/error.h"
+#include "util/output_file.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
@@ -23,6 +28,16 @@ using test::TempDir;
 std::string bytes_of(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
+}
+
+template <typename F>
+std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 std::string entry(const std::string& name, const std::string& fov = "45") {
@@ -112,6 +127,180 @@ TEST(Bookmarks, AFifoIsAProblemNotAHang) {
     EXPECT_NE(problems[0].find("a FIFO"), std::string::npos) << problems[0];
     // Neither copied nor replaced.
     EXPECT_THROW(bookmarks.save(fifo.string()), InputError);
+}
+
+/// A file-size limit (`ulimit -f`) for one scope, SIGXFSZ ignored as the viewer ignores it, so
+/// a write past the limit fails with EFBIG.
+class FileSizeLimit {
+  public:
+    explicit FileSizeLimit(rlim_t bytes) {
+        ::getrlimit(RLIMIT_FSIZE, &old_);
+        old_signal_ = std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit = old_;
+        limit.rlim_cur = bytes;
+        ::setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    ~FileSizeLimit() {
+        ::setrlimit(RLIMIT_FSIZE, &old_);
+        std::signal(SIGXFSZ, old_signal_);
+    }
+
+  private:
+    rlimit old_{};
+    void (*old_signal_)(int) = nullptr;
+};
+
+// A damaged file is renamed aside, not copied: no size limit or full disk can leave a partial
+// backup (an empty .bak once made the next save use .bak.1), and a huge file takes no time.
+TEST(Bookmarks, TheBackupIsTheDamagedFileRenamedWhateverItsSize) {
+    const TempDir dir;
+    const std::string damaged = bookmarks_file(20) + "garbage";
+    const fs::path file = dir.write("bookmarks.json", damaged);
+    struct stat before {};
+    ASSERT_EQ(::stat(file.c_str(), &before), 0);
+    Bookmarks bookmarks;
+    ASSERT_EQ(bookmarks.load(file.string()).size(), 1u);
+    bookmarks.put("builtin:cornell", {"new", Camera{}});
+    {
+        // The damaged file is larger than the limit; the new one (one bookmark) is not.
+        const FileSizeLimit limit(damaged.size() / 2);
+        EXPECT_EQ(bookmarks.save(file.string()), file.string() + ".bak");
+    }
+    struct stat backup {};
+    ASSERT_EQ(::stat((file.string() + ".bak").c_str(), &backup), 0);
+    EXPECT_EQ(backup.st_ino, before.st_ino);
+    EXPECT_EQ(bytes_of(file.string() + ".bak"), damaged);
+    EXPECT_FALSE(fs::exists(file.string() + ".bak.1"));
+
+    // A sparse file past the size read (17 MB here; the tester's took minutes at 50 GB).
+    const fs::path big = dir.path() / "big.json";
+    std::ofstream(big).close();
+    fs::resize_file(big, 17u << 20);
+    ASSERT_EQ(::stat(big.c_str(), &before), 0);
+    Bookmarks of_big;
+    ASSERT_EQ(of_big.load(big.string()).size(), 1u);
+    EXPECT_EQ(of_big.save(big.string()), big.string() + ".bak");
+    ASSERT_EQ(::stat((big.string() + ".bak").c_str(), &backup), 0);
+    EXPECT_EQ(backup.st_ino, before.st_ino);
+    EXPECT_EQ(backup.st_size, 17 << 20);
+}
+
+// When the new file cannot be written the damaged one goes back: no backup is left beside it,
+// and the next save backs up to .bak again.
+TEST(Bookmarks, AFailedWriteAfterTheBackupRestoresTheDamagedFile) {
+    const TempDir dir;
+    const std::string damaged = bookmarks_file(1) + "garbage";
+    const fs::path file = dir.write("bookmarks.json", damaged);
+    Bookmarks bookmarks;
+    ASSERT_EQ(bookmarks.load(file.string()).size(), 1u);
+    for (int i = 0; i < 40; ++i) bookmarks.put("builtin:cornell", {std::to_string(i), Camera{}});
+    {
+        const FileSizeLimit limit(1024);  // below forty bookmarks
+        EXPECT_THROW(bookmarks.save(file.string()), InputError);
+    }
+    EXPECT_EQ(bytes_of(file), damaged);
+    EXPECT_FALSE(fs::exists(file.string() + ".bak"));
+    EXPECT_TRUE(bookmarks.damaged());
+    EXPECT_EQ(bookmarks.save(file.string()), file.string() + ".bak");
+    EXPECT_EQ(bytes_of(file.string() + ".bak"), damaged);
+}
+
+// A backup through a symbolic link moves the file it names and keeps the link.
+TEST(Bookmarks, ADamagedFileBehindALinkIsBackedUpBesideItsTarget) {
+    const TempDir dir;
+    const fs::path target = dir.write("real.json", "{");
+    const fs::path link = dir.path() / "bookmarks.json";
+    fs::create_symlink(target, link);
+    Bookmarks bookmarks;
+    ASSERT_EQ(bookmarks.load(link.string()).size(), 1u);
+    bookmarks.put("builtin:cornell", {"new", Camera{}});
+    EXPECT_EQ(bookmarks.save(link.string()), target.string() + ".bak");
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(bytes_of(target.string() + ".bak"), "{");
+    Bookmarks reread;
+    EXPECT_TRUE(reread.load(link.string()).empty());
+    EXPECT_EQ(reread.of("builtin:cornell").size(), 1u);
+}
+
+// A loop of symbolic links is a file that cannot be read, not a missing one: a warning at load,
+// and a save that fails instead of replacing the link with a file.
+TEST(Bookmarks, ALoopOfSymbolicLinksIsWarnedAboutAndNotReplaced) {
+    const TempDir dir;
+    const fs::path a = dir.path() / "a.json";
+    const fs::path b = dir.path() / "b.json";
+    fs::create_symlink(b, a);
+    fs::create_symlink(a, b);
+    Bookmarks bookmarks;
+    const std::vector<std::string> problems = bookmarks.load(a.string());
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_NE(problems[0].find("symbolic links"), std::string::npos) << problems[0];
+    EXPECT_TRUE(bookmarks.unreadable());
+    bookmarks.put("builtin:cornell", {"new", Camera{}});
+    EXPECT_THROW(bookmarks.save(a.string()), InputError);
+    EXPECT_TRUE(fs::is_symlink(a));
+    EXPECT_EQ(fs::read_symlink(a), b);
+    // Any output refuses a loop (OutputFile), not only bookmarks.
+    EXPECT_THROW(write_file(a, "x", "test file"), InputError);
+    EXPECT_TRUE(fs::is_symlink(a));
+}
+
+// No output of the viewer (layout, write-command, save-view, save-linear, screenshot, bookmarks)
+// may replace a file it reads: the scene OBJ, its MTL library, the animation file and the
+// meshes it names, the script being run, the bookmarks file; through a link too.
+TEST(ViewerFiles, OutputsNeverReplaceTheViewersInputs) {
+    const TempDir dir;
+    const fs::path mtl = dir.write("box.mtl", "newmtl red\nKd 1 0 0\n");
+    const fs::path obj = dir.write("box.obj",
+                                   "mtllib box.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                   "usemtl red\nf 1 2 3\n");
+    const fs::path animation = dir.write(
+        "anim.json", R"({"objects": [{"mesh": "box.obj", "keys": [{"time": 0}, {"time": 1}]}]})");
+    const fs::path script = dir.write("script.txt", "quit\n");
+    const fs::path bookmarks = dir.write("bookmarks.json", bookmarks_file(1));
+    fs::create_symlink(obj, dir.path() / "link.obj");
+    ViewerState s;
+    s.script_path = script.string();
+    s.bookmarks_path = bookmarks.string();
+    for (const fs::path& scene : {obj, animation}) {
+        load_into(s, scene.string());
+        ASSERT_TRUE(s.scene) << s.scene_error;
+        for (const fs::path& input : {obj, mtl, script, bookmarks, dir.path() / "link.obj"})
+            for (const char* what : {"layout", "write-command", "save-view", "screenshot"}) {
+                const std::string error =
+                    error_of([&] { check_output_spares_inputs(s, input.string(), what); });
+                EXPECT_NE(error.find(": writing it would replace what is read"), std::string::npos)
+                    << what << " " << input << ": " << error;
+            }
+        EXPECT_EQ(error_of([&] {
+                      check_output_spares_inputs(s, (dir.path() / "x.png").string(), "save-view");
+                  }),
+                  "");
+    }
+    EXPECT_NE(error_of([&] {
+                  check_output_spares_inputs(s, animation.string(), "save-linear");
+              }).find("save-linear " + animation.string() + " is the scene's input"),
+              std::string::npos);
+    // The bookmarks file is the one output that may replace itself.
+    EXPECT_EQ(error_of([&] { check_output_spares_inputs(s, bookmarks.string(), "bookmarks"); }),
+              "");
+    // The script's writes fail at their line and leave the file as it was.
+    const std::string obj_text = bytes_of(obj);
+    for (const std::string verb : {"layout", "write-command"}) {
+        ScriptRunner runner(parse_script(verb + " " + obj.string() + "\n", "s"));
+        std::string screenshot;
+        bool quit = false;
+        EXPECT_NE(error_of([&] {
+                      runner.step(s, {}, screenshot, quit);
+                  }).find("script line 1: " + verb + " " + obj.string() + " is the scene's"),
+                  std::string::npos)
+            << verb;
+        EXPECT_EQ(bytes_of(obj), obj_text);
+    }
+    s.bookmarks_path = mtl.string();
+    const std::string mtl_text = bytes_of(mtl);
+    EXPECT_NE(error_of([&] { save_bookmark(s, "front"); }).find("bookmarks not saved: "),
+              std::string::npos);
+    EXPECT_EQ(bytes_of(mtl), mtl_text);
 }
 
 TEST(ViewerFiles, AScriptMustBeARegularFile) {

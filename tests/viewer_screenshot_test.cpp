@@ -376,7 +376,7 @@ TEST(ViewerScreenshots, DamagedBookmarksAreReportedAndTheFileLeftAlone) {
                           "--bookmarks " + (dir / "bookmarks.json").string() + " builtin:cornell");
     EXPECT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("[0]: skipped"), std::string::npos) << result.output;
-    EXPECT_NE(result.output.find("copied to a .bak before bookmarks are next saved"),
+    EXPECT_NE(result.output.find("moved to a .bak before bookmarks are next saved"),
               std::string::npos)
         << result.output;
     std::ifstream in(dir / "bookmarks.json");
@@ -552,6 +552,13 @@ TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
         {"set c-i 0\nwait-spp 2\nquit\n",
          "edacrt_viewer: error: script line 2: the render failed: EDACRT parameter c-i (C_I) "
          "must be positive"},
+        // An output over the script being run (tests/viewer_files_test.cpp: every input).
+        {"wait-spp 1\nsave-view " + (dir.path() / "script.txt").string() + "\nquit\n",
+         "edacrt_viewer: error: script line 2: save-view " + (dir.path() / "script.txt").string() +
+             " is the script input: writing it would replace what is read"},
+        {"wait-spp 1\nscreenshot " + (dir.path() / "script.txt").string() + "\nquit\n",
+         "edacrt_viewer: error: screenshot " + (dir.path() / "script.txt").string() +
+             " is the script input"},
     };
     for (const auto& c : cases) {
         const auto start = std::chrono::steady_clock::now();
@@ -561,6 +568,8 @@ TEST(ViewerScreenshots, AFailedSaveOrRenderFailsTheScriptAtItsLine) {
         EXPECT_NE(result.output.find(c.message), std::string::npos) << c.script << "\n"
                                                                     << result.output;
         EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::minutes(1));
+        std::ifstream script(dir.path() / "script.txt");
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(script), {}), c.script);
     }
 }
 
@@ -586,6 +595,28 @@ TEST(ViewerCommandLine, VersionAndUsageErrorsAsTheCliReportsThem) {
         EXPECT_EQ(result.exit_code, 2) << args << "\n" << result.output;
         EXPECT_EQ(result.output.rfind("edacrt_viewer: error: ", 0), 0u) << result.output;
     }
+    // Animation flags without an animation, as edacrt refuses --frames/--time/--shutter: one
+    // line naming the flag.
+    for (const char* flag : {"--shutter 0.1", "--speed 2", "--update rebuild"}) {
+        const auto result =
+            test::run_command("timeout 20 " EDACRT_VIEWER " builtin:sphere " + std::string(flag));
+        EXPECT_EQ(result.exit_code, 2) << flag << "\n" << result.output;
+        EXPECT_EQ(result.output, "edacrt_viewer: error: " +
+                                     std::string(flag).substr(0, std::string(flag).find(' ')) +
+                                     " needs an animated scene (--animate, or an animation "
+                                     "file)\n");
+    }
+    // An unknown animation lists the kinds on one line (its help had \x0A for newlines).
+    const auto bogus =
+        test::run_command("timeout 20 " EDACRT_VIEWER " builtin:sphere --animate bogus");
+    EXPECT_NE(bogus.exit_code, 0);
+    EXPECT_EQ(bogus.output.rfind("edacrt_viewer: error: unknown animation 'bogus'; available: "
+                                 "wave[:",
+                                 0),
+              0u)
+        << bogus.output;
+    EXPECT_EQ(std::count(bogus.output.begin(), bogus.output.end(), '\n'), 1) << bogus.output;
+    EXPECT_EQ(bogus.output.find("\\x0A"), std::string::npos) << bogus.output;
 }
 
 // Names from files (a script's words, a scene path) reach the terminal escaped: an ESC byte

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 #include "render/default_camera.h"
+#include "util/error.h"
 
 namespace edacrt {
 namespace {
@@ -27,13 +30,32 @@ const std::array<CameraParam, 4> kCameraParams = {{
 std::span<const CameraParam> camera_params() { return kCameraParams; }
 
 Camera choose_camera(const Scene& scene, const CameraOptions& options) {
-    Camera camera = default_camera(scene);
+    const Camera fallback = default_camera(scene);
+    Camera camera = fallback;
     for (const CameraParam& param : kCameraParams) {
         const std::vector<float>& values = options.*param.given;
         if (values.size() >= param.count)
             std::copy_n(values.begin(), param.count, param.field(camera));
     }
-    validate(camera);
+    try {
+        validate(camera);
+    } catch (const InputError& e) {
+        // The user gave no such camera: name the scene and the flags that replace its view.
+        if (scene.camera) throw;
+        try {
+            validate(fallback);
+        } catch (const InputError&) {
+            const auto finite3 = [](glm::vec3 v) {
+                return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+            };
+            const bool finite = finite3(fallback.eye) && finite3(fallback.look_at);
+            throw InputError(
+                scene.source + ": the default camera from its bounds is " +
+                (finite ? "not valid (" + std::string(e.what()) + ")" : std::string("not finite")) +
+                " (coordinates near the float limit); give --eye and --look-at");
+        }
+        throw;
+    }
     return camera;
 }
 

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "util/error.h"
@@ -297,8 +299,15 @@ std::unique_ptr<Animation> make_deformation(std::string_view spec, Scene& scene)
     if (kind == "wave") return std::make_unique<Wave>(options, spec, scene);
     if (kind == "twist") return std::make_unique<Twist>(options, spec, scene);
     if (kind == "explode") return std::make_unique<Explode>(options, scene);
-    throw InputError("unknown animation '" + std::string(spec) + "'; available:\n" +
-                     animation_help());
+    // One line (messages reach the terminal escaped, a newline as \x0A): the kinds alone,
+    // the first line of each in animation_help().
+    std::string kinds;
+    std::istringstream help(animation_help());
+    for (std::string line; std::getline(help, line);)
+        if (line.starts_with("  ") && line.size() > 2 && line[2] != ' ')
+            kinds += (kinds.empty() ? "" : ", ") + line.substr(2);
+    throw InputError("unknown animation '" + std::string(spec) + "'; available: " + kinds +
+                     " (--help describes them)");
 }
 
 }  // namespace edacrt

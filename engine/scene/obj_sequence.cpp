@@ -32,7 +32,17 @@ std::vector<std::int64_t> find_frames(const FramePattern& pattern) {
             throw InputError("sequence " + pattern.pattern() + ": cannot read " +
                              it->path().string() + " in " + directory.string() + ": " +
                              error.message());
-        if (regular) frames.push_back(*index);
+        // Skipped, a FIFO or device shortened the sequence or read as a missing frame:
+        // refused by name, as every reader refuses them (util/input_file.h).
+        if (!regular) {
+            const auto type = it->status(error).type();
+            const char* kind = type == std::filesystem::file_type::directory ? "a directory"
+                               : type == std::filesystem::file_type::fifo    ? "a FIFO"
+                                                                             : "a device or socket";
+            throw InputError("sequence " + pattern.pattern() + ": " + it->path().string() +
+                             ": not a regular file (" + kind + "); a key frame must be a file");
+        }
+        frames.push_back(*index);
     }
     if (error)
         throw InputError("sequence " + pattern.pattern() + ": cannot list " + directory.string() +

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,6 +34,9 @@ fs::path rename_target(const fs::path& path) {
     std::error_code ec;
     if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
     const fs::path target = fs::canonical(path, ec);
+    // A loop names no file to write: replacing it would silently undo someone's links.
+    if (ec == std::errc::too_many_symbolic_link_levels)
+        throw InputError(path.string() + ": a loop of symbolic links; not replaced");
     return ec ? path : target;  // a dangling link: replaced by the file
 }
 
@@ -159,6 +163,30 @@ std::optional<std::string> output_identity(const std::filesystem::path& path) {
 bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b) {
     const std::optional<std::string> ia = output_identity(a);
     return ia && ia == output_identity(b);
+}
+
+void check_distinct_files(const std::vector<NamedPath>& outputs,
+                          const std::vector<NamedPath>& inputs) {
+    // By identity (util/output_file.h), so that thousands of frames cost no pairwise checks.
+    std::map<std::string, const NamedPath*> written;
+    for (const NamedPath& out : outputs) {
+        if (out.path.empty()) continue;
+        const std::optional<std::string> id = output_identity(out.path);
+        if (!id) continue;
+        const auto [at, fresh] = written.emplace(*id, &out);
+        if (!fresh)
+            throw InputError(at->second->option + " and " + out.option + " both name " +
+                             at->second->path + ": give each output a file of its own");
+    }
+    for (const NamedPath& in : inputs) {
+        if (in.path.empty() || in.path.starts_with("builtin:")) continue;
+        const std::optional<std::string> id = output_identity(in.path);
+        if (!id) continue;
+        if (const auto at = written.find(*id); at != written.end())
+            throw InputError(at->second->option + " " + at->second->path + " is the " + in.option +
+                             " input" + (in.path == at->second->path ? "" : " " + in.path) +
+                             ": writing it would replace what is read");
+    }
 }
 
 void create_parent_folders(const std::filesystem::path& file) {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace edacrt {
 
@@ -58,5 +59,18 @@ std::optional<std::string> output_identity(const std::filesystem::path& path);
 /// True when `a` and `b` name the same output file (after resolving "..", symbolic links and
 /// hard links). Devices and FIFOs (/dev/null, /dev/stdout) are never the same output.
 bool same_output_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// A file a command names (on its command line, in a script): what names it, and the path.
+struct NamedPath {
+    std::string option;  // "--out"
+    std::string path;    // empty: not given
+};
+
+/// Throws InputError before any work when two outputs name the same file (the second would
+/// silently replace the first), or an output names an input (read, then overwritten), through
+/// symbolic or hard links too. Devices such as /dev/null and /dev/stdout may be shared; inputs
+/// that are not files (builtin:...) are skipped.
+void check_distinct_files(const std::vector<NamedPath>& outputs,
+                          const std::vector<NamedPath>& inputs = {});
 
 }  // namespace edacrt

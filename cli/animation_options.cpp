@@ -111,7 +111,7 @@ AnimatedScene load_animated_verbose(const std::string& scene, const AnimationOpt
     const std::string spec = o.spec();
     if (spec.empty()) {
         if (scene.empty())
-            throw InputError("no scene: give --scene, or --animate FILE.json or --sequence");
+            throw UsageError("no scene: give --scene, or --animate FILE.json or --sequence");
         return {load_scene_verbose(scene), nullptr};
     }
     const auto start = std::chrono::steady_clock::now();

@@ -83,6 +83,7 @@ TEST(CommandLineCli, BadFlagValuesAreUsageErrors) {
         {render + "--out q.png --wavefront-paths 99999999999999999999",
          "--wavefront-paths: expected a whole number"},
         {render + "--out q.png --seed -1", "--seed"},
+        {"render --width 8 --height 8 --out q.png", "no scene: give --scene"},
         {"info builtin:sphere --samples-per-pass 0", "samples per pass must be 1..1024"},
         {"accuracy --scene builtin:sphere --rays 0", "--rays must be 1..10000000"},
         {"bench --scene builtin:sphere --sets nowhere", "unknown ray set"},

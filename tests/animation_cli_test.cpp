@@ -22,10 +22,7 @@ std::string spot() { return (test::source_dir() / "assets/spot/spot.obj").string
 
 const std::string kSmall = "render --width 32 --height 24 --spp 1 --integrator primary ";
 
-std::string bytes_of(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using test::bytes_of;
 
 TEST(AnimationCli, FramesWriteOneImagePerFrame) {
     const TempDir dir;

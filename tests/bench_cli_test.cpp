@@ -10,6 +10,7 @@
 #include <set>
 
 #include "cli_runner.h"
+#include "temp_dir.h"
 #include "test_paths.h"
 
 namespace edacrt {
@@ -31,11 +32,6 @@ class BenchCli : public ::testing::Test {
 
     std::filesystem::path dir_;
 };
-
-std::string slurp(const std::string& file) {
-    std::ifstream in(file);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 TEST_F(BenchCli, EveryMethodAndSetAgree) {
     const auto result = test::run_cli("bench --scene cornell --width 24 --height 16 --repeat 1 " +
@@ -76,7 +72,7 @@ TEST_F(BenchCli, EveryMethodAndSetAgree) {
     for (const std::string& set : sets)
         for (const std::string& method : methods)
             EXPECT_TRUE(seen.contains({set, method})) << set << " " << method;
-    EXPECT_NE(slurp(path("bench.md")).find("| scene | set |"), std::string::npos);
+    EXPECT_NE(test::bytes_of(path("bench.md")).find("| scene | set |"), std::string::npos);
     EXPECT_NE(result.output.find("frame ms"), std::string::npos) << result.output;
 }
 

@@ -42,6 +42,13 @@ def zip_bytes(members):
     return buffer.getvalue()
 
 
+def unused_port():
+    """A local port nothing listens on: a connection is refused at once."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
 class Mirror:
     """A temporary directory holding a small manifest, the files it names laid out as
     HOST/PATH (what --mirror reads) and an empty scenes folder."""
@@ -164,9 +171,7 @@ class Fetching(unittest.TestCase):
         self.assertEqual(target.read_bytes(), Mirror.OBJ)
 
     def test_an_unreachable_host_says_offline(self):
-        with socket.socket() as s:  # a port nothing listens on: refused at once
-            s.bind(("127.0.0.1", 0))
-            port = s.getsockname()[1]
+        port = unused_port()
         result = self.m.run("--mirror", f"http://127.0.0.1:{port}", mirror=False)
         self.assertEqual(result.returncode, 1)
         self.assertIn(f"cannot reach 127.0.0.1:{port}: ", result.stderr)
@@ -254,20 +259,14 @@ class Interrupting(unittest.TestCase):
         for folder in [self.m.dest / "plain", self.m.dest / "zipped" / "sub"]:
             folder.mkdir(parents=True)
             (folder / ".f.4999999.abc123.part").write_bytes(b"half")
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            port = s.getsockname()[1]
-        result = self.m.run("--mirror", f"http://127.0.0.1:{port}", mirror=False)
+        result = self.m.run("--mirror", f"http://127.0.0.1:{unused_port()}", mirror=False)
         self.assertEqual(result.returncode, 1)
         self.assertIn("removed 2 temporary files", result.stdout)
         self.assertEqual(self.everything(), [])
         self.assertTrue(self.m.dest.is_dir(), "the scenes folder itself is the user's")
 
     def test_offline_leaves_no_empty_folders(self):
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            port = s.getsockname()[1]
-        result = self.m.run("--mirror", f"http://127.0.0.1:{port}", mirror=False)
+        result = self.m.run("--mirror", f"http://127.0.0.1:{unused_port()}", mirror=False)
         self.assertEqual(result.returncode, 1)
         self.assertIn("are you offline?", result.stderr)
         self.assertEqual(self.everything(), [])

@@ -20,10 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-std::string bytes_of(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using test::bytes_of;
 
 std::set<std::string> names_in(const fs::path& dir) {
     std::set<std::string> names;

@@ -15,6 +15,7 @@
 #include "bookmarks.h"
 #include "enum_table_checks.h"
 #include "heatmap.h"
+#include "input_error.h"
 #include "orbit_camera.h"
 #include "render/benchmark_rays.h"
 #include "render_worker.h"
@@ -207,16 +208,7 @@ TEST(Script, ParsesCommandsAndNamesTheLineOfAnError) {
     EXPECT_THROW(load_script("/no/such/script"), InputError);
 }
 
-/// The message of the InputError `f` throws, or "" when it throws none.
-template <typename F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::error_of;
 
 TEST(Script, NumberErrorsNameTheLineAndTheValue) {
     EXPECT_EQ(error_of([] { parse_script("quit\nwait-spp lots\n", "s"); }),

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "bookmarks.h"
+#include "input_error.h"
 #include "scene_catalog.h"
 #include "script.h"
 #include "script_runner.h"
@@ -25,20 +26,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-std::string bytes_of(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-template <typename F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::bytes_of;
+using test::error_of;
 
 std::string entry(const std::string& name, const std::string& fov = "45") {
     return R"({"name": ")" + name +

@@ -10,7 +10,9 @@ Run from the repository root after building edacrt and edacrt_paper_rays:
   bench/paper_experiment.py --quick           (64x64, one run: checks that it works)
   bench/paper_experiment.py --from-results --readme   (re-make the section from results.json)
 Time is the trace_seconds `edacrt trace` prints (one batch; file I/O and scene set-up are
-outside it); variants run interleaved, the median of --repeats runs is reported.
+outside it); variants run interleaved, the median of --repeats runs is reported. Run r draws
+EDACRT's ray samples with --sampling-seed 1 + r: the tree depends on the draw, so medians and
+the mean counters are over draws, not one seed's luck.
 """
 import argparse
 import functools
@@ -73,17 +75,15 @@ def make_rays(args, name, scene, camera_flags):
     return {s: (p, p.stat().st_size // 32) for s, p in paths.items()}
 
 
-def trace(args, scene, rays, flags, stats=None):
-    """One `edacrt trace`: the timed pass's seconds, and with `stats` its JSON (totals of the
-    timed pass, detail from an extra untimed pass)."""
+def trace(args, scene, rays, flags, seed, stats=None):
+    """One `edacrt trace` with sampling seed `seed`: the timed pass's seconds, box and triangle
+    tests, and with `stats` its JSON (detail from an extra untimed pass)."""
     command = ["nice", args.build / "edacrt", "trace", "--scene", scene, "--rays", rays,
-               "--out", "/dev/null", "--threads", args.threads, *flags]
-    if stats:
-        run(command + ["--stats", stats])
-        data = json.loads(stats.read_text())
-        return data["trace_seconds"], data
-    match = re.search(r" in ([0-9.eE+-]+) s:", run(command))
-    return float(match.group(1)), None
+               "--out", "/dev/null", "--threads", args.threads, "--sampling-seed", seed, *flags]
+    text = run(command + (["--stats", stats] if stats else []))
+    match = re.search(r" in ([0-9.eE+-]+) s:.* ([0-9]+) ray-box and ([0-9]+) ray-triangle", text)
+    seconds, box, tri = float(match.group(1)), int(match.group(2)), int(match.group(3))
+    return seconds, box, tri, json.loads(stats.read_text()) if stats else None
 
 
 def summarise_detail(data):
@@ -111,20 +111,22 @@ def summarise_detail(data):
 
 def measure_set(args, scene, rays, count, variants, stats_dir):
     """Every variant on one ray file, interleaved: run r visits the variants rotated by r."""
-    results = {key: {"times": []} for key in variants}
+    results = {key: {"times": [], "box": [], "tri": []} for key in variants}
     for r in range(args.repeats):
         order = variants[r % len(variants):] + variants[:r % len(variants)]
         for key in order:
             flags = next(f for k, _, f, _ in VARIANTS if k == key)
             stats = stats_dir / f"{key}.json" if r == 0 else None
-            seconds, data = trace(args, scene, rays, flags, stats)
-            results[key]["times"].append(seconds)
-            if data:  # the first run: totals of its timed pass, and the detail
-                results[key]["box_per_ray"] = data["ray_box_tests"] / max(count, 1)
-                results[key]["tri_per_ray"] = data["ray_triangle_tests"] / max(count, 1)
+            seconds, box, tri, data = trace(args, scene, rays, flags, 1 + r, stats)
+            for name, value in (("times", seconds), ("box", box), ("tri", tri)):
+                results[key][name].append(value)
+            if data:  # the first run (seed 1): the detail
                 results[key]["detail"] = summarise_detail(data)
     for key in variants:
-        results[key]["median"] = statistics.median(results[key]["times"])
+        v = results[key]
+        v["median"] = statistics.median(v["times"])
+        v["box_per_ray"] = statistics.mean(v.pop("box")) / max(count, 1)
+        v["tri_per_ray"] = statistics.mean(v.pop("tri")) / max(count, 1)
     return results
 
 
@@ -406,8 +408,10 @@ def markdown(args, results, figure):
         "and 3 of diffuse path tracing (`diffuse` is bounce 1). The bunny is framed from +z, the "
         "buildings are seen from inside (views in bench/paper_experiment.py). Each file is one "
         "`edacrt trace` batch (closest hit); time is its trace_seconds, the median of "
-        f"{results['repeats']} runs with the variants interleaved; counters are per ray, from the "
-        "totals of the timed pass (box tests include EDACRT's sampling).",
+        f"{results['repeats']} runs with the variants interleaved, run r with `--sampling-seed "
+        "1+r` (a tree depends on its draw of sampled rays; one seed's tree can take 0.8-1.3x the "
+        "time of another's); counters are per ray, the mean over the runs of the timed pass's "
+        "totals (box tests include EDACRT's sampling).",
         "",
         "Two comparisons. **Each at its best**: `--method dacrt` against `--method edacrt`, "
         "each with its own defaults, which [the sweep](#each-method-at-its-best-the-switch-sweep) "
@@ -417,7 +421,7 @@ def markdown(args, results, figure):
         "triangles) against DACRT as Mora 2011 and Afra 2012 define it: `--method dacrt "
         "--presplit 0 --second-child after-first`. The paper's own K, leaf thresholds and cost "
         "constants are not in the report the project started from; both sides use ours (K = 8, "
-        "16 rays or 8 triangles per leaf, C_T = 2, C_I = C_bv = 1).",
+        "16 rays or 4 triangles per leaf, C_T = 2, C_I = C_bv = 1).",
         "",
         f"![speed-up against samples per pixel](figures/{figure.name})",
         "",
@@ -438,7 +442,8 @@ def markdown(args, results, figure):
         "",
         "### Counters behind the times",
         "",
-        "From the `--stats` detail (an extra, untimed pass of the first run). *First child "
+        "From the `--stats` detail (an extra, untimed pass of the first run, sampling seed 1). "
+        "*First child "
         "right*: among rays that hit both children's boxes, the share whose hit was in the child "
         "visited first. *Filters skipped*: child ray sets passed down unfiltered. *Sample box*: "
         "box tests of the sampled rays; *filter box*: box tests of the filtering (root "

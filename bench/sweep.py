@@ -27,7 +27,7 @@ HEADING = "## Each method at its best: the switch sweep"
 run = functools.partial(run_checked, tool="sweep")
 SETS = ["camera-1spp", "diffuse", "ao", "shadow"]
 TOLERANCE = 1.10  # a default within 10% of the best variant of every set
-CONFIRM_REPEAT = 9  # frames of the head-to-head run that confirms a better variant
+CONFIRM_REPEAT = 15  # frames of the head-to-head run that confirms a better variant
 
 # Per method, the variants: one switch each, away from the method's defaults. The identity of
 # each (EDACRT: sampled ratios and order, filter skipping; DACRT: area ratios, direction-sign
@@ -35,14 +35,14 @@ CONFIRM_REPEAT = 9  # frames of the head-to-head run that confirms a better vari
 # change a decision under the defaults (C_T and C_I cancel in the argmin without cost leaves;
 # C_child needs filter-skip=triangles) are not swept.
 VARIANTS = {
-    "edacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=4",
-               "leaf-tris=16", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
+    "edacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=2",
+               "leaf-tris=8", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
                "binning=centroids", "small-nodes=scaled", "small-nodes=capped",
                "small-nodes=every-ray", "small-nodes=surface-area", "sample-min=8",
                "sample-min=32", "sample-count=50", "sample-threshold=300", "far-child=unstopped",
                "cost-leaf-max-tris=64", "filter-skip=triangles", "c-bv=0.5", "c-bv=2"],
-    "dacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=4",
-              "leaf-tris=16", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
+    "dacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=2",
+              "leaf-tris=8", "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",
               "binning=centroids", "cost-leaf-max-tris=64"],
     "bvh": ["bins=4", "bins=16", "max-leaf=4", "max-leaf=16", "c-t=0.5", "c-t=2"],
 }
@@ -143,7 +143,9 @@ def markdown(args, rows, confirmed, machine, seconds, command, rev):
              "",
              f"Each method's switches, one at a time away from its defaults, timed per frame "
              f"(`set_scene()` + `trace()`, medians of {args.repeat} frames interleaved in a "
-             f"shuffled order in one `edacrt bench` process per scene and thread count) on "
+             f"shuffled order in one `edacrt bench` process per scene and thread count; frame r "
+             f"draws EDACRT's ray samples with sampling seed 1 + r, since one draw's tree can "
+             f"take 0.8-1.3x the time of another's) on "
              f"{args.size}x{args.size} pixels: jittered camera rays (1 spp) and, from their hits, "
              f"diffuse bounces, AO and shadow rays; scenes {', '.join(scenes)}. Every variant "
              f"found the same hits (bench's agreement check). A cell is the variant's frame time "

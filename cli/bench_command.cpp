@@ -46,7 +46,10 @@ std::function<void()> add_bench_command(CLI::App& app) {
     command->add_option("--height", o.height, "rows")
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
-    command->add_option("--repeat", o.repeat, "frames per method and set (median and min)")
+    command
+        ->add_option("--repeat", o.repeat,
+                     "frames per method and set (median and min); still frame r draws EDACRT's ray "
+                     "samples with sampling seed S + r")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     command->add_option("--threads", o.threads, "worker threads (0: all cores)")

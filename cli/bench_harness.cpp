@@ -122,6 +122,15 @@ std::vector<std::size_t> frame_order(std::size_t variants, int f, bool animated)
     return order;
 }
 
+/// The parameters of still frame `f`: a new sampling seed each frame. Sampled hit ratios make
+/// the recursion's tree depend on the draw, and one draw's tree can take 0.8-1.3x the time of
+/// another's on the same rays (Conference diffuse bounces), so a median over frames is one over
+/// draws, as a render's passes see them, not the luck of one seed.
+EdacrtParams frame_params(EdacrtParams params, int f) {
+    params.seed += std::uint32_t(f);
+    return params;
+}
+
 /// Times every variant over the frames on `rays` at `run.threads` threads, calling
 /// `frame_done` after each variant's frame, and compares the hits with the reference variant's:
 /// on every animated frame, on the last still one (the others are the same).
@@ -159,12 +168,13 @@ SetRun run_set(const Frames& frames, const std::vector<Variant>& variants, SetRu
         for (const std::size_t i : frame_order(variants.size(), f, animated)) {
             const Variant& v = variants[i];
             MethodRun& m = run.methods[i];
-            if (!animated) tracers[i] = make_tracer(v.method, v.params, v.mode, v.bvh);
+            if (!animated)
+                tracers[i] = make_tracer(v.method, frame_params(v.params, f), v.mode, v.bvh);
             const UpdateStats update = tracers[i]->update_scene(frames.scene, v.how);
             m.work = update.work;
             m.prepare_seconds.push_back(update.seconds);
             const auto start = std::chrono::steady_clock::now();
-            m.stats = tracers[i]->trace(rays, hits[i], run.query);
+            m.stats += tracers[i]->trace(rays, hits[i], run.query);
             m.trace_seconds.push_back(seconds_since(start));
             m.working_bytes = std::max(m.working_bytes, tracers[i]->working_bytes());
             if (!animated) tracers[i].reset();

@@ -30,7 +30,7 @@ struct MethodRun {
     UpdateWork work = UpdateWork::none;  // what its updates did, every frame
     // One per frame: set_scene() (still) or update_scene() (animated), and trace().
     std::vector<double> prepare_seconds, trace_seconds;
-    TraceStats stats;               // of the last frame
+    TraceStats stats;               // summed over the frames (per ray: their mean)
     std::size_t working_bytes = 0;  // the most of any frame
     Agreement agreement;            // against the reference variant, summed over frames
     bool reference = false;

@@ -53,7 +53,8 @@ void run(const TraceOptions& o) {
     const double mrays = double(rays.size()) / trace_seconds * 1e-6;
     std::cout << "traced " << rays.size() << " rays (" << enum_name(kQueries, query) << " hit"
               << ") with " << method << " in " << trace_seconds << " s: " << mrays << " Mrays/s; "
-              << hit_count << " hits; prepare " << prepare_seconds << " s\n";
+              << hit_count << " hits; prepare " << prepare_seconds << " s; " << stats.ray_box_tests
+              << " ray-box and " << stats.ray_triangle_tests << " ray-triangle tests\n";
 
     nlohmann::json stats_json = {{"command", "trace"},
                                  {"scene", scene.source},

@@ -180,6 +180,33 @@ TEST_F(BenchCli, WritesEachSetsRaysForTrace) {
     }
 }
 
+// A sampled tree depends on its draw, so still frame r draws with sampling seed 1 + r: the
+// counters are the mean over the frames' draws, each what `edacrt trace` counts with that seed.
+TEST_F(BenchCli, EachFrameDrawsItsOwnSampleAndCountersAreTheirMean) {
+    const std::string teapot = (test::source_dir() / "assets/teapot/teapot.obj").string();
+    const auto result = test::run_cli("bench --scene " + teapot +
+                                      " --width 64 --height 64 --spp 1 --sets camera "
+                                      "--methods edacrt --threads 1 --repeat 3 --write-rays " +
+                                      path("rays") + " --json " + path("bench.json"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json row = read_json("bench.json")["results"][0];
+    const auto rays = row["rays"].get<double>();
+    std::set<std::uint64_t> counts;
+    double box_sum = 0.0;
+    for (int seed = 1; seed <= 3; ++seed) {
+        const auto trace = test::run_cli("trace --scene " + teapot + " --rays " +
+                                         path("rays/teapot_camera-1spp.rays") + " --out " +
+                                         path("hits") + " --threads 1 --sampling-seed " +
+                                         std::to_string(seed) + " --stats " + path("stats.json"));
+        ASSERT_EQ(trace.exit_code, 0) << trace.output;
+        const auto box = read_json("stats.json")["ray_box_tests"].get<std::uint64_t>();
+        counts.insert(box);
+        box_sum += double(box);
+    }
+    EXPECT_EQ(counts.size(), 3u) << "the seeds should make three different trees here";
+    EXPECT_NEAR(row["box_tests_per_ray"].get<double>(), box_sum / 3.0 / rays, 1e-9);
+}
+
 TEST_F(BenchCli, BadParametersFailWithAMessage) {
     const std::string quick = "bench --scene cornell --width 8 --height 8 --repeat 1 ";
     struct Case {

@@ -100,7 +100,7 @@ struct EdacrtParams {
     SmallNodes small_nodes = SmallNodes::scaled_min;
     std::uint32_t sample_min = 16;  // SmallNodes::scaled_min
     std::uint32_t leaf_rays = 16;
-    std::uint32_t leaf_tris = 8;
+    std::uint32_t leaf_tris = 4;
     std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)
     float cost_traversal = 2.0f;           // C_T
     float cost_intersect = 1.0f;           // C_I

@@ -9,19 +9,23 @@
 namespace edacrt {
 
 bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm::vec3> radiance) {
-    std::vector<Ray> rays;
+    WavefrontBuffers& b = wf.buffers;
+    std::vector<Ray>& rays = b.rays;
     wf.camera_rays(begin, end, rays);
-    std::vector<Hit> hits(rays.size());
+    std::vector<Hit>& hits = b.hits;
+    hits.assign(rays.size(), Hit{});
     if (!wf.trace(rays, hits, Query::closest)) return false;
 
     // Compact the hits; their AO rays are consecutive, ao_samples per hit.
-    std::vector<std::uint32_t> hit_pixels;
+    std::vector<std::uint32_t>& hit_pixels = b.indices;
+    hit_pixels.clear();
     for (std::size_t i = 0; i < hits.size(); ++i)
         if (hits[i].hit()) hit_pixels.push_back(std::uint32_t(i));
     const auto n = std::size_t(wf.settings.ao_samples);
     const float distance =
         wf.settings.ao_distance > 0.0f ? wf.settings.ao_distance : 0.25f * wf.shading.diagonal;
-    std::vector<Ray> ao_rays(hit_pixels.size() * n);
+    std::vector<Ray>& ao_rays = b.secondary;
+    ao_rays.resize(hit_pixels.size() * n);
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, hit_pixels.size(), 256), [&](const auto& range) {
             for (std::size_t h = range.begin(); h != range.end(); ++h) {
@@ -34,7 +38,8 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
                 }
             }
         });
-    std::vector<Hit> ao_hits(ao_rays.size());
+    std::vector<Hit>& ao_hits = b.secondary_hits;
+    ao_hits.assign(ao_rays.size(), Hit{});
     if (!wf.trace(ao_rays, ao_hits, Query::any)) return false;
 
     std::fill(radiance.begin(), radiance.end(), glm::vec3(0.0f));

@@ -15,12 +15,6 @@
 namespace edacrt {
 namespace {
 
-struct PathState {
-    glm::vec3 throughput{1.0f};
-    std::uint32_t pixel = 0;  // within the tile
-    float bsdf_pdf = 0.0f;    // solid-angle pdf of the sample that made the ray; 0: camera/delta
-};
-
 float power_heuristic(float pdf, float other_pdf) {
     const float a = pdf * pdf, b = other_pdf * other_pdf;
     return a + b > 0.0f ? a / (a + b) : 0.0f;
@@ -38,16 +32,18 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
     const Lights& lights = wf.shading.lights;
     const RenderSettings& settings = wf.settings;
 
-    std::vector<Ray> rays;
+    WavefrontBuffers& b = wf.buffers;
+    std::vector<Ray>& rays = b.rays;
     wf.camera_rays(begin, end, rays);
-    std::vector<PathState> paths(rays.size());
+    std::vector<PathState>& paths = b.paths;
+    paths.assign(rays.size(), PathState{});
     for (std::size_t i = 0; i < paths.size(); ++i) paths[i].pixel = std::uint32_t(i);
     std::fill(radiance.begin(), radiance.end(), glm::vec3(0.0f));
 
-    std::vector<Hit> hits;
-    std::vector<Ray> next_rays, shadow_rays;
-    std::vector<glm::vec3> shadow_light;  // unoccluded contribution of each shadow ray
-    std::vector<std::uint8_t> alive, has_shadow;
+    std::vector<Hit>& hits = b.hits;
+    std::vector<Ray>&next_rays = b.next_rays, &shadow_rays = b.secondary_slots;
+    std::vector<glm::vec3>& shadow_light = b.shadow_light;
+    std::vector<std::uint8_t>&alive = b.alive, &has_shadow = b.has_shadow;
     for (int depth = 0; !paths.empty(); ++depth) {
         hits.resize(rays.size());
         if (!wf.trace(rays, hits, Query::closest)) return false;
@@ -131,13 +127,16 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
         });
 
         // One any-hit batch for the shadow rays of this bounce.
-        std::vector<std::uint32_t> shadow_index;
+        std::vector<std::uint32_t>& shadow_index = b.indices;
+        shadow_index.clear();
         for (std::size_t i = 0; i < n; ++i)
             if (has_shadow[i]) shadow_index.push_back(std::uint32_t(i));
         if (!shadow_index.empty()) {
-            std::vector<Ray> batch(shadow_index.size());
+            std::vector<Ray>& batch = b.secondary;
+            batch.resize(shadow_index.size());
             for (std::size_t k = 0; k < batch.size(); ++k) batch[k] = shadow_rays[shadow_index[k]];
-            std::vector<Hit> occluders(batch.size());
+            std::vector<Hit>& occluders = b.secondary_hits;
+            occluders.assign(batch.size(), Hit{});
             if (!wf.trace(batch, occluders, Query::any)) return false;
             for (std::size_t k = 0; k < batch.size(); ++k)
                 if (!occluders[k].hit())

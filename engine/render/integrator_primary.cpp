@@ -12,9 +12,10 @@ namespace edacrt {
 
 bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
                     std::span<glm::vec3> radiance) {
-    std::vector<Ray> rays;
+    std::vector<Ray>& rays = wf.buffers.rays;
     wf.camera_rays(begin, end, rays);
-    std::vector<Hit> hits(rays.size());
+    std::vector<Hit>& hits = wf.buffers.hits;
+    hits.assign(rays.size(), Hit{});
     if (!wf.trace(rays, hits, Query::closest)) return false;
 
     const float far = std::max(wf.shading.diagonal, 1e-30f);

@@ -45,7 +45,7 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
     PassStats stats;
     const std::size_t pixels = std::size_t(settings_.width) * std::size_t(settings_.height);
     Wavefront wf{*scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
-                 pixels,  cancel,   stats};
+                 pixels,  cancel,   stats,   buffers_};
     const std::size_t paths = pixels * std::size_t(samples);
     const std::size_t wave = wavefront_paths(settings_, paths);
     for (std::size_t begin = 0; begin < paths; begin += wave) {

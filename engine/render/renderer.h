@@ -60,6 +60,7 @@ class Renderer {
     Film film_;
     PassStats last_pass_, total_;
     std::vector<glm::vec3> samples_;  // the pass being rendered, sample-major
+    WavefrontBuffers buffers_;        // the integrators' arrays, kept between passes
 };
 
 }  // namespace edacrt

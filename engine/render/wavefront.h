@@ -35,6 +35,28 @@ struct PassStats {
     }
 };
 
+/// A path of the path tracer's wavefront between bounces.
+struct PathState {
+    glm::vec3 throughput{1.0f};
+    std::uint32_t pixel = 0;  // within the tile
+    float bsdf_pdf = 0.0f;    // solid-angle pdf of the sample that made the ray; 0: camera/delta
+};
+
+/// The integrators' arrays, kept by the Renderer from wavefront to wavefront and pass to pass:
+/// allocated afresh for each wavefront, their first touch (page faults) was most of a small
+/// render's time outside the tracer.
+struct WavefrontBuffers {
+    std::vector<Ray> rays, next_rays;
+    std::vector<Hit> hits;
+    std::vector<PathState> paths;
+    // Each bounce's secondary batch (shadow or AO rays), gathered from per-path slots.
+    std::vector<Ray> secondary_slots, secondary;
+    std::vector<Hit> secondary_hits;
+    std::vector<glm::vec3> shadow_light;  // unoccluded contribution of each shadow ray
+    std::vector<std::uint8_t> alive, has_shadow;
+    std::vector<std::uint32_t> indices;
+};
+
 struct Wavefront {
     const Scene& scene;
     const ShadingScene& shading;
@@ -45,6 +67,7 @@ struct Wavefront {
     std::size_t pixels;               // width * height
     const std::atomic<bool>* cancel;  // checked before every batch
     PassStats& stats;
+    WavefrontBuffers& buffers;
 
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 

@@ -1,9 +1,10 @@
 #pragma once
 // The viewer's --script: UI actions, one per line, for headless tests and demos.
-//   set KEY VALUE      a UI parameter (method, spp, ...; every EDACRT flag without "--",
-//                      e.g. set filter-skip off; set preset paper); animation: animate SPEC,
-//                      time T, play 0|1, speed X, loop 0|1, update MODE, shutter S,
-//                      play-scale 1|2|4; compare-spp 1|4|16 (camera rays per pixel of `compare`)
+//   set KEY VALUE      a setting of app/settings_table.h (method, spp, max-depth, exposure,
+//                      compare-spp, ...; the animation's time, play, speed, loop, update,
+//                      shutter, play-scale), an EDACRT flag without "--" (set filter-skip off),
+//                      preset NAME, scene PATH, animate SPEC, or the explorer's level, node,
+//                      crop and step
 //   view NAME          render | box | triangle | depth | order
 //   wait-spp N         until the shown image has N samples per pixel (of the current settings)
 //   wait-loaded        until the scenes asked for (set scene) are loaded and the render asked

@@ -122,9 +122,6 @@ int run_viewer(const ViewerOptions& options) {
     ViewerState s;
     std::optional<ScriptRunner> script;
     try {
-        s.ui.method = options.method;
-        s.ui.integrator = options.integrator;
-        s.ui.spp_target = options.spp;
         if (!options.script.empty()) script.emplace(load_script(options.script));
         s.script_path = options.script;
     } catch (const std::exception& e) {
@@ -132,42 +129,25 @@ int run_viewer(const ViewerOptions& options) {
         return 1;
     }
     s.panels_hidden = options.hide_panels;
-    try {
-        s.playback.update = options.update;
-        if (!(options.shutter >= 0.0 && options.shutter <= 1e3))
-            throw InputError("--shutter must be a number of seconds from 0 to 1000");
-        check_setting("speed", options.speed);
-        if (!std::isfinite(options.time)) throw InputError("--time must be finite");
-    } catch (const std::exception& e) {  // a flag's value: a usage error
-        std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
-        return flags::kExitUsageError;
-    }
-    s.playback.motion_blur = options.shutter > 0.0;
-    if (options.shutter > 0.0) s.playback.shutter = float(options.shutter);
-    s.playback.speed = float(options.speed);
-    s.playback.playing = options.play;
     load_into(s, options.scene, options.camera, options.animate);
     if (!s.scene) {
         std::cerr << "edacrt_viewer: error: " << printable(s.scene_error) << "\n";
         return 1;
     }
-    if (s.playback.frames) {
-        seek(s, options.time);
-        if (!s.playback.error.empty()) {
-            std::cerr << "edacrt_viewer: error: " << printable(s.playback.error) << "\n";
-            return 1;
-        }
-    } else if (!options.animate.empty() || options.play || options.time != 0.0 ||
-               !options.animation_flags.empty()) {
-        std::string given;
-        for (const std::string& flag : options.animation_flags)
-            given += (given.empty() ? "" : ", ") + flag;
-        std::cerr << "edacrt_viewer: error: "
-                  << (given.empty()
-                          ? "--time and --play need"
-                          : given + (options.animation_flags.size() == 1 ? " needs" : " need"))
+    // Animation flags without an animation are refused, as edacrt refuses --frames, --time
+    // and --shutter.
+    if (const std::string given = animation_flags(options.settings);
+        !s.playback.frames && !given.empty()) {
+        std::cerr << "edacrt_viewer: error: " << given
+                  << (given.find(',') == std::string::npos ? " needs" : " need")
                   << " an animated scene (--animate, or an animation file)\n";
         return flags::kExitUsageError;
+    }
+    try {
+        apply_settings(s, options.settings);
+    } catch (const std::exception& e) {  // checked while parsing: only a frame that fails
+        std::cerr << "edacrt_viewer: error: " << printable(e.what()) << "\n";
+        return 1;
     }
     s.bookmarks_path = options.bookmarks.empty() ? Bookmarks::default_path() : options.bookmarks;
     if (!s.bookmarks_path.empty()) {

@@ -404,8 +404,8 @@ TEST(Script, LayoutWritesTheFramesRectanglesAndPickImageUsesTheImageRegion) {
         << "a folder is not a layout file";
 }
 
-// `set` checks what the widgets allow, from the same table (setting_range) or the renderer's
-// own checks, and names the script line.
+// `set` checks what the widgets allow, from the same table (viewer_settings(), whose ranges
+// are the renderer's), and names the script line.
 TEST(Script, SetValuesAreRangeChecked) {
     ViewerState s;
     for (const auto& [line, message] : std::vector<std::pair<std::string, std::string>>{
@@ -415,8 +415,9 @@ TEST(Script, SetValuesAreRangeChecked) {
              {"set resolution -0.5", "resolution must be from 0.125 to 1, got -0.5"},
              {"set resolution 4", "resolution must be from 0.125 to 1, got 4"},
              {"set seed -1", "seed must be a whole number from 0"},
-             {"set max-depth -1", "script line 1: max depth must be 0..1024, got -1"},
-             {"set ao-samples 1e12", "ao samples must be 1..1024"},
+             {"set max-depth -1",
+              "script line 1: max-depth must be a whole number from 0 to 1024, got -1"},
+             {"set ao-samples 1e12", "ao-samples must be a whole number from 1 to 1024"},
              {"set spp x", "script line 1: 'spp' needs a number, got 'x'"},
          }) {
         const std::string error = run_script(s, line + "\n");

@@ -1,10 +1,12 @@
 // edacrt_viewer: the interactive viewer. See README.md ("The viewer").
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <iostream>
 
 #include "camera_flags.h"
 #include "parse_command_line.h"
 #include "scene/animation.h"
+#include "script.h"
 #include "setting_flags.h"
 #include "viewer.h"
 
@@ -21,7 +23,14 @@ int main(int argc, char** argv) {
     app.add_option("--frames", o.frames, "quit after this many frames (0: run until closed)")
         ->check(CLI::Range(0, 100000000));
     app.add_option("--screenshot", o.screenshot, "save the window as PNG before quitting");
-    app.add_option("--script", o.script, "run UI actions from a file (see app/script.h)");
+    app.add_option("--script", o.script, "run UI actions from a file (--script-help lists them)");
+    app.add_flag_callback(
+        "--script-help",
+        [] {
+            std::cout << edacrt::app::script_help();
+            throw CLI::Success();
+        },
+        "list the script's commands and exit");
     edacrt::flags::add_camera_options(app, o.camera);
     app.add_flag("--hide-panels", o.hide_panels, "start with the panels hidden (Tab shows them)");
     app.add_option("--bookmarks", o.bookmarks,

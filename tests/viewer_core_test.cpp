@@ -10,6 +10,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "bookmarks.h"
@@ -402,6 +403,30 @@ TEST(Script, LayoutWritesTheFramesRectanglesAndPickImageUsesTheImageRegion) {
     EXPECT_NE(run_script(s, "layout " + dir.path().string() + "\n").find("script line 1: "),
               std::string::npos)
         << "a folder is not a layout file";
+}
+
+// Every verb is described once (script_verbs()): the parser takes it with its argument count,
+// --script-help lists it with its arguments, and the README names it.
+TEST(Script, EveryVerbParsesAndIsInTheHelpAndTheReadme) {
+    std::ifstream file(std::string(EDACRT_SOURCE_DIR) + "/README.md");
+    const std::string readme(std::istreambuf_iterator<char>(file), {});
+    const std::string help = script_help();
+    std::set<std::string_view> names;
+    for (const ScriptVerb& verb : script_verbs()) {
+        EXPECT_TRUE(names.insert(verb.name).second) << verb.name << " twice";
+        EXPECT_TRUE(verb.run) << verb.name;
+        EXPECT_FALSE(verb.help.empty()) << verb.name;
+        std::string line(verb.name);
+        const char* arg = verb.kind == ScriptArgs::fraction ? "0.5" : "1";
+        for (std::size_t i = 0; i < verb.args; ++i) line += std::string(" ") + arg;
+        EXPECT_EQ(error_of([&] { parse_script(line + "\n", "s"); }), "") << line;
+        EXPECT_NE(error_of([&] { parse_script(line + " 1 2\n", "s"); }), "") << line;
+        const std::string usage = "  " + std::string(verb.name) +
+                                  (verb.usage.empty() ? "" : " " + std::string(verb.usage));
+        EXPECT_NE(help.find(usage), std::string::npos) << usage;
+        EXPECT_NE(readme.find("`" + std::string(verb.name)), std::string::npos)
+            << verb.name << " is not in README.md";
+    }
 }
 
 // `set` checks what the widgets allow, from the same table (viewer_settings(), whose ranges

@@ -1,5 +1,6 @@
 #include "script.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -11,52 +12,14 @@
 namespace edacrt::app {
 namespace {
 
-// What a verb's arguments are: words, counts (whole numbers >= 0), finite numbers, fractions
-// (0 to 1) or durations (seconds, more than 0 and at most a day).
-enum class Args { words, count, real, fraction, seconds };
-
-struct Verb {
-    std::string_view name;
-    std::size_t args;
-    Args kind = Args::words;
-};
-constexpr Verb kVerbs[] = {{"set", 2},
-                           {"view", 1},
-                           {"wait-spp", 1, Args::count},
-                           {"frames", 1, Args::count},
-                           {"orbit", 2, Args::real},
-                           {"quit", 0},
-                           {"screenshot", 1},
-                           {"tab", 1},
-                           {"panels", 1},
-                           {"analysis", 1},
-                           {"help", 1},
-                           {"check-layout", 0},
-                           {"save-view", 1},
-                           {"save-linear", 1},
-                           {"write-command", 1},
-                           {"bookmark", 1},
-                           {"record", 0},
-                           {"pick", 2, Args::real},
-                           {"wait-analysis", 0},
-                           {"compare", 0},
-                           {"wait-compare", 0},
-                           {"wait-played", 1, Args::count},
-                           {"wait-loaded", 0},
-                           {"wait-error", 0},
-                           {"wait-settled", 0},
-                           {"timeout", 1, Args::seconds},
-                           {"layout", 1},
-                           {"pick-image", 2, Args::fraction}};
-
 /// What the verb's numbers must be, for its error message.
-std::string kind_text(Args kind) {
+std::string kind_text(ScriptArgs kind) {
     switch (kind) {
-        case Args::count:
+        case ScriptArgs::count:
             return "whole numbers from 0";
-        case Args::fraction:
+        case ScriptArgs::fraction:
             return "numbers from 0 to 1";
-        case Args::seconds:
+        case ScriptArgs::seconds:
             return "seconds, more than 0 and at most 86400";
         default:
             return "numbers";
@@ -64,15 +27,15 @@ std::string kind_text(Args kind) {
 }
 
 /// The whole word as a number of the verb's kind, or nullopt.
-std::optional<double> parse_number(const std::string& word, Args kind) {
+std::optional<double> parse_number(const std::string& word, ScriptArgs kind) {
     double value = 0.0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value))
         return std::nullopt;
-    if (kind == Args::count && !(value >= 0.0 && value <= 1e9 && value == std::floor(value)))
+    if (kind == ScriptArgs::count && !(value >= 0.0 && value <= 1e9 && value == std::floor(value)))
         return std::nullopt;
-    if (kind == Args::fraction && !(value >= 0.0 && value <= 1.0)) return std::nullopt;
-    if (kind == Args::seconds && !(value > 0.0 && value <= 86400.0)) return std::nullopt;
+    if (kind == ScriptArgs::fraction && !(value >= 0.0 && value <= 1.0)) return std::nullopt;
+    if (kind == ScriptArgs::seconds && !(value > 0.0 && value <= 86400.0)) return std::nullopt;
     return value;
 }
 
@@ -92,13 +55,13 @@ std::vector<ScriptCommand> parse_script(std::string_view text, const std::string
         const auto fail = [&](const std::string& what) {
             throw InputError(source + ":" + std::to_string(number) + ": " + what);
         };
-        const Verb* verb = nullptr;
-        for (const Verb& v : kVerbs)
+        const ScriptVerb* verb = nullptr;
+        for (const ScriptVerb& v : script_verbs())
             if (v.name == command.verb) verb = &v;
         if (!verb) fail("unknown script command '" + command.verb + "'");
         if (command.args.size() != verb->args)
             fail("'" + command.verb + "' takes " + std::to_string(verb->args) + " argument(s)");
-        if (verb->kind != Args::words)
+        if (verb->kind != ScriptArgs::words)
             for (const std::string& word : command.args) {
                 const auto value = parse_number(word, verb->kind);
                 if (!value)
@@ -109,6 +72,17 @@ std::vector<ScriptCommand> parse_script(std::string_view text, const std::string
         commands.push_back(std::move(command));
     }
     return commands;
+}
+
+std::string script_help() {
+    std::string help = "Script commands (--script FILE), one per line; '#' starts a comment:\n";
+    for (const ScriptVerb& verb : script_verbs()) {
+        std::string head = "  " + std::string(verb.name);
+        if (!verb.usage.empty()) head += " " + std::string(verb.usage);
+        head.resize(std::max<std::size_t>(head.size() + 1, 24), ' ');
+        help += head + std::string(verb.help) + "\n";
+    }
+    return help;
 }
 
 std::vector<ScriptCommand> load_script(const std::string& path) {

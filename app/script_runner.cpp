@@ -17,8 +17,8 @@ using Clock = std::chrono::steady_clock;
 
 nlohmann::json rect_json(const Rect& r) { return {{"x", r.x}, {"y", r.y}, {"w", r.w}, {"h", r.h}}; }
 
-/// What wait-settled compares from frame to frame: the regions, the panels as drawn (with
-/// their table cells' widths and clipping), the reported widgets and the open tabs.
+/// What wait-settled compares from frame to frame: the regions, the panels as drawn (with their
+/// table cells' widths and clipping), the reported widgets and the open tabs.
 std::string layout_signature(const ViewerState& s) {
     std::string text;
     char buffer[160];
@@ -81,6 +81,297 @@ bool ScriptRunner::waiting(bool done, const ScriptCommand& c, const std::string&
     return true;
 }
 
+void ScriptStep::fail(const std::string& what) const {
+    throw InputError("script line " + std::to_string(c.line) + ": " + what);
+}
+
+void ScriptStep::render_failed() const {
+    if (!s.render_error.empty()) fail("the render failed: " + s.render_error);
+}
+
+bool ScriptStep::choice(const char* yes, const char* no) const {
+    if (c.args[0] != yes && c.args[0] != no) fail("'" + c.verb + "' takes " + yes + " or " + no);
+    return c.args[0] == yes;
+}
+
+std::span<const ScriptVerb> script_verbs() { return ScriptRunner::verbs(); }
+
+std::span<const ScriptVerb> ScriptRunner::verbs() {
+    using R = ScriptRunner;
+    using Step = ScriptStep;
+    using Next = ScriptNext;
+    using Args = ScriptArgs;
+    static const ScriptVerb kVerbs[] = {
+        {"set", 2, Args::words, "KEY VALUE",
+         "a setting (app/settings_table.h: method, spp, max-depth, exposure, "
+         "compare-spp, ...; "
+         "the animation's time, play, speed, loop, update, shutter, play-scale), "
+         "an EDACRT flag "
+         "without \"--\" (set filter-skip off), preset NAME, scene PATH, animate "
+         "SPEC, or the "
+         "explorer's level, node, crop and step",
+         [](R&, Step& st) {
+             try {
+                 apply_setting(st.s, st.c.args[0], st.c.args[1]);
+             } catch (const InputError& e) {
+                 st.fail(e.what());
+             }
+             return Next::next_frame;  // the next frame submits the change
+         }},
+        {"view", 1, Args::words, "NAME", "render | box | triangle | depth | order",
+         [](R&, Step& st) {
+             st.s.view = parse_enum_or_throw(kViews, st.c.args[0]);
+             return Next::next_frame;  // what a wait sees comes after the change is
+                                       // drawn
+         }},
+        {"tab", 1, Args::words, "NAME", "bring a tab forward (NAME with '_' for spaces: Heat_map)",
+         [](R&, Step& st) {
+             std::string name = st.c.args[0];
+             std::replace(name.begin(), name.end(), '_', ' ');
+             st.s.select_tabs.push_back(name);
+             return Next::next_frame;
+         }},
+        {"panels", 1, Args::words, "hidden|shown", "hide all panels (Tab) or show them",
+         [](R&, Step& st) {
+             st.s.panels_hidden = st.choice("hidden", "shown");
+             return Next::next_frame;
+         }},
+        {"analysis", 1, Args::words, "open|closed", "expand or collapse the analysis area",
+         [](R&, Step& st) {
+             st.s.analysis_open = st.choice("open", "closed");
+             return Next::next_frame;
+         }},
+        {"help", 1, Args::words, "on|off", "the help overlay",
+         [](R&, Step& st) {
+             st.s.show_help = st.choice("on", "off");
+             return Next::next_frame;
+         }},
+        {"orbit", 2, Args::real, "DX DY", "drag the camera by DX, DY pixels",
+         [](R&, Step& st) {
+             try {
+                 st.s.camera.orbit(float(st.c.numbers[0]), float(st.c.numbers[1]));
+             } catch (const InputError& e) {
+                 st.s.status = e.what();  // as a drag shows it
+                 st.fail(e.what());
+             }
+             return Next::next_frame;
+         }},
+        {"wait-spp", 1, Args::count, "N",
+         "until the shown image has N samples per pixel (of the current "
+         "settings)",
+         [](R& r, Step& st) {
+             if (st.shown.spp < st.c.numbers[0]) st.render_failed();
+             return r.wait_for(st.shown.spp >= st.c.numbers[0], st.c, st.c.args[0] + " spp");
+         }},
+        {"wait-loaded", 0, Args::words, "",
+         "until the scenes asked for (set scene) are loaded and the render asked "
+         "for has begun "
+         "(its first frame or its error); fails the script with the error when "
+         "the last load "
+         "or that render failed",
+         [](R& r, Step& st) {
+             // A load is made at the start of a frame; the render of the scene is asked for after
+             // the panels are drawn.
+             const ViewerState& s = st.s;
+             const bool tried = s.pending_loads.empty();
+             if (tried && !s.scene_error.empty())
+                 st.fail("the scene did not load: " + s.scene_error);
+             // Loaded means the tracer took it too: a method that refuses the scene (Embree past
+             // its range) fails here as the other waits fail, not at the next wait.
+             const bool submitted = tried && s.scene && s.submitted.scene == s.scene;
+             if (submitted) st.render_failed();
+             return r.wait_for(submitted && s.render_answered, st.c, "the scene to load");
+         }},
+        {"wait-error", 0, Args::words, "",
+         "until an error message is on screen (drawn by the panels in the last "
+         "frame; with the "
+         "panels hidden, one they would show: scene, resolution, render or "
+         "animation) and "
+         "prints it (\"error shown: ...\")",
+         [](R& r, Step& st) {
+             const ViewerState& s = st.s;
+             std::string error;
+             if (!s.errors_shown.empty()) error = s.errors_shown.front();
+             if (s.panels_hidden)
+                 for (const std::string* e :
+                      {&s.scene_error, &s.resolution_error, &s.render_error, &s.playback.error})
+                     if (error.empty()) error = *e;
+             if (r.waiting(!error.empty(), st.c, "an error message on screen")) return Next::again;
+             std::cout << "error shown: " << printable(error) << "\n";
+             return Next::go_on;
+         }},
+        {"wait-settled", 0, Args::words, "",
+         "until the screen shows what was asked: the view of the current "
+         "render's latest "
+         "full-resolution pass, the tabs brought forward, and the panels, "
+         "widgets and table "
+         "columns unchanged for three frames",
+         [](R& r, Step& st) {
+             const bool asked = st.s.select_tabs.empty() && st.s.pending_loads.empty();
+             if (!st.shown.image_current) st.render_failed();
+             return r.wait_for(asked && st.shown.image_current && r.same_layout_frames_ >= 2, st.c,
+                               "the screen to settle (the view asked for of the current render, "
+                               "the tabs asked for, the layout unchanged for three frames)");
+         }},
+        {"timeout", 1, Args::seconds, "S",
+         "the waits that follow fail the script after S seconds (default 300)",
+         [](R& r, Step& st) {
+             r.timeout_ = std::chrono::duration<double>(st.c.numbers[0]);
+             return Next::go_on;
+         }},
+        {"frames", 1, Args::count, "N",
+         "let N frames pass (demos; tests wait for a condition instead)",
+         [](R& r, Step& st) {
+             if (r.frames_left_ < 0) r.frames_left_ = int(st.c.numbers[0]);
+             if (r.frames_left_-- > 0) return Next::again;
+             r.frames_left_ = -1;
+             return Next::go_on;
+         }},
+        {"check-layout", 0, Args::words, "",
+         "fail unless every panel is inside the window, off the image region, "
+         "with no table "
+         "cell clipped (the last frame's layout)",
+         [](R&, Step& st) {
+             const ViewerState& s = st.s;
+             std::string report;
+             for (const std::string& p : s.layout_problems) report += "\n  " + p;
+             if (!report.empty()) st.fail("layout problems:" + report);
+             std::cout << "layout ok: " << s.placements.size() << " panels, image "
+                       << s.layout.image.x << " " << s.layout.image.y << " " << s.layout.image.w
+                       << " " << s.layout.image.h << "\n";
+             return Next::go_on;
+         }},
+        {"layout", 1, Args::words, "FILE",
+         "write the last frame's layout as JSON (layout_json()): the window, the "
+         "image region, "
+         "the panels and the widgets the panels report, in window coordinates "
+         "(times "
+         "framebuffer_scale for screenshot pixels)",
+         [](R&, Step& st) {
+             const std::string& path = st.c.args[0];
+             try {
+                 check_output_spares_inputs(st.s, path, "layout");
+                 create_parent_folders(path);
+                 write_file(path, layout_json(st.s), "layout");
+             } catch (const InputError& e) {
+                 st.fail(e.what());
+             }
+             return Next::go_on;
+         }},
+        {"save-view", 1, Args::words, "FILE", "save the image region as shown (.png or .jpg)",
+         [](R& r, Step& st) { return r.ask_save(st, ViewerState::Save::shown); }},
+        {"save-linear", 1, Args::words, "FILE",
+         "save the render (.exr, .pfm, .hdr linear; .png, .jpg tone-mapped)",
+         [](R& r, Step& st) { return r.ask_save(st, ViewerState::Save::linear); }},
+        {"write-command", 1, Args::words, "FILE",
+         "write the `edacrt render` command that reproduces the view",
+         [](R&, Step& st) {
+             const std::string& path = st.c.args[0];
+             try {
+                 check_output_spares_inputs(st.s, path, "write-command");
+                 create_parent_folders(path);
+                 write_file(path, st.s.command_line + "\n", "command line");
+             } catch (const InputError& e) {
+                 st.fail(e.what());
+             }
+             return Next::go_on;
+         }},
+        {"bookmark", 1, Args::words, "NAME",
+         "save the view as the scene's bookmark NAME in the bookmarks file "
+         "(--bookmarks), as "
+         "the Camera tab's \"save view\" does",
+         [](R&, Step& st) {
+             try {
+                 save_bookmark(st.s, st.c.args[0]);
+             } catch (const InputError& e) {
+                 st.fail(e.what());
+             }
+             return Next::go_on;
+         }},
+        {"record", 0, Args::words, "", "record the view's recursion (recursion explorer)",
+         [](R& r, Step& st) {
+             st.s.analysis_requested = true;
+             r.analysis_asked_ = true;
+             return Next::go_on;
+         }},
+        {"pick", 2, Args::real, "X Y",
+         "follow the camera ray under window position X, Y (traversal debugger)",
+         [](R& r, Step& st) {
+             r.pick_ = glm::vec2(float(st.c.numbers[0]), float(st.c.numbers[1]));
+             r.analysis_asked_ = true;
+             return Next::go_on;
+         }},
+        {"pick-image", 2, Args::fraction, "U V",
+         "the same at fractions U, V (0 to 1) of the image region's width, "
+         "height",
+         [](R& r, Step& st) {
+             // Inside the region: its right and bottom edges belong to no pixel.
+             const Rect& image = st.s.layout.image;
+             if (image.empty()) st.fail("there is no image region to pick in");
+             r.pick_ =
+                 glm::vec2(image.x + std::min(float(st.c.numbers[0]) * image.w, image.w - 0.5f),
+                           image.y + std::min(float(st.c.numbers[1]) * image.h, image.h - 0.5f));
+             r.analysis_asked_ = true;
+             return Next::go_on;
+         }},
+        {"wait-analysis", 0, Args::words, "", "until the recording or the followed ray is ready",
+         [](R& r, Step& st) {
+             // Asked for in this step, the analysis starts in the next frame: one more step.
+             const bool busy =
+                 r.analysis_asked_ || st.s.analysis_running || st.s.analysis_requested;
+             if (busy) st.render_failed();
+             r.analysis_asked_ = st.s.analysis_running || st.s.analysis_requested;
+             return r.wait_for(!busy, st.c, "the analysis");
+         }},
+        {"compare", 0, Args::words, "", "time every method on the view (Statistics, Frames)",
+         [](R& r, Step& st) {
+             st.s.compare_requested = true;
+             r.compare_asked_ = true;
+             return Next::next_frame;  // started in the next frame
+         }},
+        {"wait-compare", 0, Args::words, "", "until the comparison is done",
+         [](R& r, Step& st) {
+             const bool busy = r.compare_asked_ || st.s.comparing || st.s.compare_requested;
+             if (busy) st.render_failed();
+             r.compare_asked_ = st.s.comparing || st.s.compare_requested;
+             return r.wait_for(!busy, st.c, "the comparison");
+         }},
+        {"wait-played", 1, Args::count, "N",
+         "until N frames of the animation were rendered since it was loaded (set "
+         "play 1 first; "
+         "set time T shows time T, paused)",
+         [](R& r, Step& st) {
+             const Playback& p = st.s.playback;
+             const bool played = double(p.history.size()) >= st.c.numbers[0];
+             if (!played) {
+                 if (!p.frames) st.fail("wait-played needs an animated scene");
+                 st.render_failed();
+                 if (!p.playing && !p.error.empty()) st.fail(p.error);
+             }
+             return r.wait_for(played, st.c, st.c.args[0] + " played frames");
+         }},
+        {"screenshot", 1, Args::words, "FILE", "save the window as PNG",
+         [](R&, Step& st) {
+             st.screenshot = st.c.args[0];
+             return Next::next_frame;  // taken at the end of this frame
+         }},
+        {"quit", 0, Args::words, "", "quit",
+         [](R&, Step& st) {
+             st.quit = true;
+             return Next::go_on;
+         }},
+    };
+    return kVerbs;
+}
+
+ScriptNext ScriptRunner::ask_save(ScriptStep& st, ViewerState::Save what) {
+    st.s.save_path = st.c.args[0];
+    st.s.save_requested = what;
+    st.s.save_error.clear();
+    save_line_ = st.c.line;
+    return ScriptNext::next_frame;  // saved in the next frame, one file per frame
+}
+
 void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& screenshot,
                         bool& quit) {
     // The layout drawn this frame against the last one, whatever the script is doing.
@@ -95,168 +386,15 @@ void ScriptRunner::step(ViewerState& s, const ShownFrame& shown, std::string& sc
     }
     while (next_ < commands_.size()) {
         const ScriptCommand& c = commands_[next_];
-        const auto fail = [&](const std::string& what) {
-            throw InputError("script line " + std::to_string(c.line) + ": " + what);
-        };
-        // A render that failed will not reach what a wait waits for.
-        const auto render_failed = [&] {
-            if (!s.render_error.empty()) fail("the render failed: " + s.render_error);
-        };
-        const auto choice = [&](const char* yes, const char* no) {
-            if (c.args[0] != yes && c.args[0] != no)
-                fail("'" + c.verb + "' takes " + yes + " or " + no);
-            return c.args[0] == yes;
-        };
-        if (c.verb == "wait-spp") {
-            if (shown.spp < c.numbers[0]) render_failed();
-            if (waiting(shown.spp >= c.numbers[0], c, c.args[0] + " spp")) return;
-        } else if (c.verb == "wait-loaded") {
-            // A load is made at the start of a frame; the render of the scene is asked for
-            // after the panels are drawn.
-            const bool tried = s.pending_loads.empty();
-            if (tried && !s.scene_error.empty()) fail("the scene did not load: " + s.scene_error);
-            // Loaded means the tracer took it too: a method that refuses the scene (Embree past
-            // its range) fails here as the other waits fail, not at the next wait.
-            const bool submitted = tried && s.scene && s.submitted.scene == s.scene;
-            if (submitted) render_failed();
-            if (waiting(submitted && s.render_answered, c, "the scene to load")) return;
-        } else if (c.verb == "wait-error") {
-            std::string error;
-            if (!s.errors_shown.empty()) error = s.errors_shown.front();
-            if (s.panels_hidden)
-                for (const std::string* e :
-                     {&s.scene_error, &s.resolution_error, &s.render_error, &s.playback.error})
-                    if (error.empty()) error = *e;
-            if (waiting(!error.empty(), c, "an error message on screen")) return;
-            std::cout << "error shown: " << printable(error) << "\n";
-        } else if (c.verb == "wait-settled") {
-            const bool asked = s.select_tabs.empty() && s.pending_loads.empty();
-            if (!shown.image_current) render_failed();
-            if (waiting(asked && shown.image_current && same_layout_frames_ >= 2, c,
-                        "the screen to settle (the view asked for of the current render, the "
-                        "tabs asked for, the layout unchanged for three frames)"))
-                return;
-        } else if (c.verb == "timeout") {
-            timeout_ = std::chrono::duration<double>(c.numbers[0]);
-        } else if (c.verb == "frames") {
-            if (frames_left_ < 0) frames_left_ = int(c.numbers[0]);
-            if (frames_left_-- > 0) return;
-            frames_left_ = -1;
-        } else if (c.verb == "set" || c.verb == "orbit") {
-            if (c.verb == "set") try {
-                    apply_setting(s, c.args[0], c.args[1]);
-                } catch (const InputError& e) {
-                    fail(e.what());
-                }
-            else
-                try {
-                    s.camera.orbit(float(c.numbers[0]), float(c.numbers[1]));
-                } catch (const InputError& e) {
-                    s.status = e.what();  // as a drag shows it
-                    fail(e.what());
-                }
-            ++next_;
-            return;  // the next frame submits the change before anything waits on it
-        } else if (c.verb == "view" || c.verb == "tab" || c.verb == "panels" ||
-                   c.verb == "analysis" || c.verb == "help") {
-            if (c.verb == "view") {
-                s.view = parse_enum_or_throw(kViews, c.args[0]);
-            } else if (c.verb == "tab") {
-                std::string name = c.args[0];
-                std::replace(name.begin(), name.end(), '_', ' ');
-                s.select_tabs.push_back(name);
-            } else if (c.verb == "panels") {
-                s.panels_hidden = choice("hidden", "shown");
-            } else if (c.verb == "analysis") {
-                s.analysis_open = choice("open", "closed");
-            } else {
-                s.show_help = choice("on", "off");
-            }
-            ++next_;
-            return;  // the next frame draws the change: what a wait sees comes after it
-        } else if (c.verb == "check-layout") {
-            std::string report;
-            for (const std::string& p : s.layout_problems) report += "\n  " + p;
-            if (!report.empty()) fail("layout problems:" + report);
-            std::cout << "layout ok: " << s.placements.size() << " panels, image "
-                      << s.layout.image.x << " " << s.layout.image.y << " " << s.layout.image.w
-                      << " " << s.layout.image.h << "\n";
-        } else if (c.verb == "layout") {
-            try {
-                check_output_spares_inputs(s, c.args[0], "layout");
-                create_parent_folders(c.args[0]);
-                write_file(c.args[0], layout_json(s), "layout");
-            } catch (const InputError& e) {
-                fail(e.what());
-            }
-        } else if (c.verb == "save-view" || c.verb == "save-linear") {
-            s.save_path = c.args[0];
-            s.save_requested =
-                c.verb == "save-view" ? ViewerState::Save::shown : ViewerState::Save::linear;
-            s.save_error.clear();
-            save_line_ = c.line;
-            ++next_;
-            return;  // saved in the next frame, one file per frame
-        } else if (c.verb == "write-command") {
-            try {
-                check_output_spares_inputs(s, c.args[0], "write-command");
-                create_parent_folders(c.args[0]);
-                write_file(c.args[0], s.command_line + "\n", "command line");
-            } catch (const InputError& e) {
-                fail(e.what());
-            }
-        } else if (c.verb == "bookmark") {
-            try {
-                save_bookmark(s, c.args[0]);
-            } catch (const InputError& e) {
-                fail(e.what());
-            }
-        } else if (c.verb == "record") {
-            s.analysis_requested = true;
-            analysis_asked_ = true;
-        } else if (c.verb == "pick" || c.verb == "pick-image") {
-            if (c.verb == "pick") {
-                pick_ = glm::vec2(float(c.numbers[0]), float(c.numbers[1]));
-            } else {
-                // Inside the region: its right and bottom edges belong to no pixel.
-                const Rect& r = s.layout.image;
-                if (r.empty()) fail("there is no image region to pick in");
-                pick_ = glm::vec2(r.x + std::min(float(c.numbers[0]) * r.w, r.w - 0.5f),
-                                  r.y + std::min(float(c.numbers[1]) * r.h, r.h - 0.5f));
-            }
-            analysis_asked_ = true;
-        } else if (c.verb == "wait-analysis") {
-            // Asked for in this step, the analysis starts in the next frame: one more step.
-            const bool busy = analysis_asked_ || s.analysis_running || s.analysis_requested;
-            if (busy) render_failed();
-            analysis_asked_ = s.analysis_running || s.analysis_requested;
-            if (waiting(!busy, c, "the analysis")) return;
-        } else if (c.verb == "compare") {
-            s.compare_requested = true;
-            compare_asked_ = true;
-            ++next_;
-            return;  // started in the next frame
-        } else if (c.verb == "wait-compare") {
-            const bool busy = compare_asked_ || s.comparing || s.compare_requested;
-            if (busy) render_failed();
-            compare_asked_ = s.comparing || s.compare_requested;
-            if (waiting(!busy, c, "the comparison")) return;
-        } else if (c.verb == "wait-played") {
-            const bool played = double(s.playback.history.size()) >= c.numbers[0];
-            if (!played) {
-                if (!s.playback.frames) fail("wait-played needs an animated scene");
-                render_failed();
-                if (!s.playback.playing && !s.playback.error.empty()) fail(s.playback.error);
-            }
-            if (waiting(played, c, c.args[0] + " played frames")) return;
-        } else if (c.verb == "screenshot") {
-            screenshot = c.args[0];
-            ++next_;
-            return;  // taken at the end of this frame
-        } else if (c.verb == "quit") {
-            quit = true;
-        }
+        ScriptStep st{s, shown, c, screenshot, quit};
+        const ScriptVerb* verb = nullptr;
+        for (const ScriptVerb& v : verbs())
+            if (v.name == c.verb) verb = &v;
+        if (!verb) st.fail("unknown script command '" + c.verb + "'");  // parse_script's
+        const ScriptNext next = verb->run(*this, st);
+        if (next == ScriptNext::again) return;
         ++next_;
+        if (next == ScriptNext::next_frame) return;
     }
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <glm/vec2.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,28 @@ namespace edacrt::app {
 
 /// What the frame just drawn shows, as the viewer knows it (the waits' conditions).
 struct ShownFrame {
-    int spp = 0;  // samples of the current request on screen (0 while a preview is shown)
+    int spp = 0;  // samples of the current request on screen (0 while a preview is
+                  // shown)
     // The image region shows the view asked for (s.view) of the current request's latest
     // full-resolution pass.
     bool image_current = false;
+};
+
+/// What a verb's step works on: the state, what the frame shows, the command, and the frame's
+/// outputs (a screenshot to take, quitting).
+struct ScriptStep {
+    ViewerState& s;
+    const ShownFrame& shown;
+    const ScriptCommand& c;
+    std::string& screenshot;
+    bool& quit;
+
+    /// Throws InputError "script line N: WHAT".
+    [[noreturn]] void fail(const std::string& what) const;
+    /// Fails with the render's error if it failed: a wait would not see what it waits for.
+    void render_failed() const;
+    /// The argument as `yes` (true) or `no` (false); fails for another word.
+    bool choice(const char* yes, const char* no) const;
 };
 
 /// Runs the script one step per frame; step() throws InputError naming the line that failed.
@@ -37,9 +56,20 @@ class ScriptRunner {
     static constexpr std::chrono::duration<double> kDefaultTimeout{300.0};
 
   private:
-    /// True while `done` is false (the step ends there); fails the command once the timeout
-    /// has passed since the wait began.
+    friend std::span<const ScriptVerb> script_verbs();
+    /// The verbs and their steps (script_verbs()), which use the runner's state.
+    static std::span<const ScriptVerb> verbs();
+
+    /// True while `done` is false (the step ends there); fails the command once the timeout has
+    /// passed since the wait began.
     bool waiting(bool done, const ScriptCommand& command, const std::string& what);
+    /// ScriptNext::again while `done` is false (waiting()), else go_on.
+    ScriptNext wait_for(bool done, const ScriptCommand& command, const std::string& what) {
+        return waiting(done, command, what) ? ScriptNext::again : ScriptNext::go_on;
+    }
+
+    /// save-view, save-linear: asks the viewer for the save, checked in the next step.
+    ScriptNext ask_save(ScriptStep& step, ViewerState::Save what);
 
     std::vector<ScriptCommand> commands_;
     std::optional<glm::vec2> pick_;
@@ -58,9 +88,9 @@ class ScriptRunner {
 
 /// The last frame's layout as JSON (the script's `layout FILE`), in window coordinates (ImGui's
 /// units; `framebuffer_scale` converts them to screenshot pixels): `window` {w, h}, `image`,
-/// `controls`, `analysis`, `timeline` (the layout's regions, {x, y, w, h}; empty when not
-/// shown), `panels` (the panel windows as drawn, with `clipped_cells`), `items` (name to
-/// rectangle), `tabs_open` and `errors_shown`.
+/// `controls`, `analysis`, `timeline` (the layout's regions, {x, y, w, h}; empty when not shown),
+/// `panels` (the panel windows as drawn, with `clipped_cells`), `items` (name to rectangle),
+/// `tabs_open` and `errors_shown`.
 std::string layout_json(const ViewerState& s);
 
 }  // namespace edacrt::app

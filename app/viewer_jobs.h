@@ -31,9 +31,6 @@ RenderRequest make_request(const ViewerState& state, int width, int height);
 /// there is no resolution to render at yet.
 bool fit_resolution(ViewerState& state, RenderRequest& request, const RenderRequest& submitted);
 
-/// The comparison's camera rays per pixel: one, or the many rays per batch the paper traces.
-inline constexpr int kCompareSpp[] = {1, 4, 16};
-
 /// The camera rays the methods are compared on: the pixel centres at 1 spp, else `spp`
 /// jittered rays per pixel, as `edacrt bench` makes them. Throws InputError when their trace
 /// would take more than half the memory limit (the paused render keeps the rest).

@@ -141,7 +141,7 @@ struct ViewerState {
     bool comparing = false;                  // the render pauses meanwhile
     std::vector<std::string> pending_loads;  // from the path field, the list, drops
     bool compare_requested = false;
-    int compare_spp = 1;  // camera rays per pixel of the comparison (kCompareSpp)
+    int compare_spp = 1;  // camera rays per pixel of the comparison (1, 4 or 16)
 
     // Saving: PNG of the image region as shown (with or without overlays), PFM of the linear
     // render; the name from the scene and the time unless a path is given.
@@ -224,27 +224,14 @@ void toggle_play(ViewerState& state);
 /// full-resolution pass; another view of the same time and method is not added).
 void record_frame_time(ViewerState& state, const Frame& frame, Method method);
 
-/// A numeric setting of the viewer, described once: `set KEY` and the command line check
-/// [min, max]; its widget slides over [min, ui_max].
-struct SettingRange {
-    std::string_view key;  // as `set` takes it
-    double min, max, ui_max;
-    bool integer;
-};
-
-/// The range of spp, threads, resolution, seed or speed.
-const SettingRange& setting_range(std::string_view key);
-
-/// Throws InputError naming the setting, its range and `value` when it is out of range.
-double check_setting(std::string_view key, double value);
-
 /// Why the EDACRT parameter cannot change the render under the method, the other parameters
 /// and the threads of `ui` (param_no_effect_reason(), and the choices dacrt makes); empty when
 /// it can.
 std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info);
 
-/// Applies a script's `set KEY VALUE` (every EDACRT flag without "--", the render settings,
-/// exposure, scene, explorer level and node). Throws InputError.
+/// Applies a script's `set KEY VALUE`: a setting of viewer_settings() (app/settings_table.h),
+/// an EDACRT parameter (its flag without "--"), a preset, or an action (scene, animate, the
+/// explorer's level, node, crop and step). Throws InputError.
 void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
 
 /// True when the recording was made for another scene, view, size, seed, method or parameters

@@ -10,6 +10,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "bookmarks.h"
@@ -404,8 +405,32 @@ TEST(Script, LayoutWritesTheFramesRectanglesAndPickImageUsesTheImageRegion) {
         << "a folder is not a layout file";
 }
 
-// `set` checks what the widgets allow, from the same table (setting_range) or the renderer's
-// own checks, and names the script line.
+// Every verb is described once (script_verbs()): the parser takes it with its argument count,
+// --script-help lists it with its arguments, and the README names it.
+TEST(Script, EveryVerbParsesAndIsInTheHelpAndTheReadme) {
+    std::ifstream file(std::string(EDACRT_SOURCE_DIR) + "/README.md");
+    const std::string readme(std::istreambuf_iterator<char>(file), {});
+    const std::string help = script_help();
+    std::set<std::string_view> names;
+    for (const ScriptVerb& verb : script_verbs()) {
+        EXPECT_TRUE(names.insert(verb.name).second) << verb.name << " twice";
+        EXPECT_TRUE(verb.run) << verb.name;
+        EXPECT_FALSE(verb.help.empty()) << verb.name;
+        std::string line(verb.name);
+        const char* arg = verb.kind == ScriptArgs::fraction ? "0.5" : "1";
+        for (std::size_t i = 0; i < verb.args; ++i) line += std::string(" ") + arg;
+        EXPECT_EQ(error_of([&] { parse_script(line + "\n", "s"); }), "") << line;
+        EXPECT_NE(error_of([&] { parse_script(line + " 1 2\n", "s"); }), "") << line;
+        const std::string usage = "  " + std::string(verb.name) +
+                                  (verb.usage.empty() ? "" : " " + std::string(verb.usage));
+        EXPECT_NE(help.find(usage), std::string::npos) << usage;
+        EXPECT_NE(readme.find("`" + std::string(verb.name)), std::string::npos)
+            << verb.name << " is not in README.md";
+    }
+}
+
+// `set` checks what the widgets allow, from the same table (viewer_settings(), whose ranges
+// are the renderer's), and names the script line.
 TEST(Script, SetValuesAreRangeChecked) {
     ViewerState s;
     for (const auto& [line, message] : std::vector<std::pair<std::string, std::string>>{
@@ -415,8 +440,9 @@ TEST(Script, SetValuesAreRangeChecked) {
              {"set resolution -0.5", "resolution must be from 0.125 to 1, got -0.5"},
              {"set resolution 4", "resolution must be from 0.125 to 1, got 4"},
              {"set seed -1", "seed must be a whole number from 0"},
-             {"set max-depth -1", "script line 1: max depth must be 0..1024, got -1"},
-             {"set ao-samples 1e12", "ao samples must be 1..1024"},
+             {"set max-depth -1",
+              "script line 1: max-depth must be a whole number from 0 to 1024, got -1"},
+             {"set ao-samples 1e12", "ao-samples must be a whole number from 1 to 1024"},
              {"set spp x", "script line 1: 'spp' needs a number, got 'x'"},
          }) {
         const std::string error = run_script(s, line + "\n");

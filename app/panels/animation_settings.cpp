@@ -36,18 +36,9 @@ void draw_animation_settings(ViewerState& s) {
     }
     if (!p.frames) return;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
-    enum_combo("update", p.update, kSceneUpdates);
-    wrapped_tooltip("how the tracer takes each new frame: " + enum_help(kSceneUpdates) +
-                    ". edacrt, dacrt and naive keep no structure: nothing to update.");
-    int scale = p.play_scale == 1 ? 0 : p.play_scale == 2 ? 1 : 2;
+    setting_widget(s, "update");
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 12.0f);
-    if (ImGui::Combo("while playing", &scale,
-                     "full resolution\0half resolution\0quarter resolution\0"))
-        p.play_scale = 1 << scale;
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "frames render at this resolution while the animation plays (smoother);\n"
-            "paused, the frame shown renders at full resolution and converges");
+    setting_widget(s, "play-scale");
     ImGui::Checkbox("motion blur", &p.motion_blur);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
@@ -57,8 +48,7 @@ void draw_animation_settings(ViewerState& s) {
     if (p.motion_blur) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
-        ImGui::SliderFloat("shutter s", &p.shutter, 1e-3f, 1.0f, "%.3f",
-                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+        setting_widget(s, "shutter", {nullptr, "%.3f"});
     }
     if (!p.error.empty()) error_text(s, "Scene/animation error", p.error);
 }

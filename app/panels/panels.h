@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "settings_table.h"
 #include "util/enum_table.h"
 #include "viewer_state.h"
 
@@ -56,6 +57,18 @@ bool enum_combo(const char* label, E& value, const EnumTable<E, N>& table) {
     }
     return changed;
 }
+
+/// How a setting's widget departs from its entry: another label ("##x" hides it), a format,
+/// the name it is reported as (report_item()).
+struct WidgetStyle {
+    const char* label = nullptr;
+    const char* format = nullptr;
+    const char* report = nullptr;
+};
+
+/// The widget of setting `key` (viewer_settings()), with its tooltip; an edit is clamped to
+/// the setting's valid range. Returns true when the value changed.
+bool setting_widget(ViewerState& state, std::string_view key, const WidgetStyle& style = {});
 
 /// A tooltip for the last item, wrapped at a readable width.
 void wrapped_tooltip(const std::string& text);

@@ -13,56 +13,28 @@
 #include "render/image_format.h"
 
 namespace edacrt::app {
-namespace {
-
-void tooltip(const char* text) {
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
-
-}  // namespace
 
 void draw_render_tab(ViewerState& s) {
-    UiSettings& ui = s.ui;
+    const UiSettings& ui = s.ui;
     ImGui::PushItemWidth(-ImGui::CalcTextSize("resolution").x - ImGui::GetStyle().ItemSpacing.x);
-    enum_combo("method", ui.method, kMethods);
-    wrapped_tooltip("how rays are traced: " + enum_help(kMethods));
-    if (ui.method == Method::embree) enum_combo("embree mode", ui.embree_mode, kEmbreeModes);
-    enum_combo("integrator", ui.integrator, kIntegrators);
-    wrapped_tooltip("integrator: " + enum_help(kIntegrators));
-    if (ui.integrator == Integrator::primary) enum_combo("shading", ui.primary, kPrimaryShadings);
-    if (ui.integrator == Integrator::path) ImGui::SliderInt("max depth", &ui.max_depth, 0, 32);
-    tooltip("path: bounces after the camera ray");
-    if (ui.integrator == Integrator::ao) ImGui::SliderInt("ao rays", &ui.ao_samples, 1, 64);
-    ImGui::SliderInt("spp", &ui.spp_target, int(setting_range("spp").min),
-                     int(setting_range("spp").ui_max), "%d",
-                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("samples per pixel to accumulate");
-    ImGui::SliderFloat("resolution", &ui.resolution_scale, float(setting_range("resolution").min),
-                       float(setting_range("resolution").ui_max), "%.3f x image",
-                       ImGuiSliderFlags_AlwaysClamp);
-    report_item(s, "Render/resolution");
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("render size as a fraction of the image region's pixels");
+    setting_widget(s, "method");
+    if (ui.method == Method::embree) setting_widget(s, "embree-mode");
+    setting_widget(s, "integrator");
+    if (ui.integrator == Integrator::primary) setting_widget(s, "primary");
+    if (ui.integrator == Integrator::path) setting_widget(s, "max-depth");
+    if (ui.integrator == Integrator::ao) setting_widget(s, "ao-samples");
+    setting_widget(s, "spp");
+    setting_widget(s, "resolution", {nullptr, "%.3f x image", "Render/resolution"});
     if (!s.resolution_error.empty()) {
         error_text(s, "Render/resolution error", s.resolution_error);
     }
-    ImGui::SliderInt("threads", &ui.threads, int(setting_range("threads").min),
-                     int(setting_range("threads").ui_max), ui.threads == 0 ? "all" : "%d",
-                     ImGuiSliderFlags_AlwaysClamp);
-    tooltip("worker threads of the renderer and the tracer (0: all cores)");
-    if (ImGui::InputInt("seed", &ui.seed))
-        ui.seed =
-            std::clamp(ui.seed, int(setting_range("seed").min), int(setting_range("seed").max));
-    tooltip(
-        "the sample sequence: the same seed gives the same image for every method and thread "
-        "count");
-    ImGui::Checkbox("pause", &ui.paused);
+    setting_widget(s, "threads", {nullptr, ui.threads == 0 ? "all" : "%d"});
+    setting_widget(s, "seed");
+    setting_widget(s, "pause");
 
     ImGui::Separator();
-    ImGui::SliderFloat("exposure", &s.exposure, -8.0f, 8.0f, "%.1f stops");
-    tooltip("display only: radiance times 2^stops before tone mapping");
-    enum_combo("tone map", s.tone_map, kToneMaps);
-    tooltip("display only: how radiance above 1 is compressed");
+    setting_widget(s, "exposure", {nullptr, "%.1f stops"});
+    setting_widget(s, "tone-map");
     ImGui::PopItemWidth();
 
     ImGui::Separator();

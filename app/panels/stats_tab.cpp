@@ -100,15 +100,7 @@ void draw_comparison(ViewerState& s) {
         s.compare_requested = true;
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::CalcTextSize("16 spp").x + ImGui::GetFrameHeight() * 2.0f);
-    if (ImGui::BeginCombo("##compare spp", (std::to_string(s.compare_spp) + " spp").c_str())) {
-        for (const int spp : kCompareSpp)
-            if (ImGui::Selectable((std::to_string(spp) + " spp").c_str(), spp == s.compare_spp))
-                s.compare_spp = spp;
-        ImGui::EndCombo();
-    }
-    wrapped_tooltip(
-        "camera rays per pixel, one batch: 1, the pixel centres; more, jittered rays as `edacrt "
-        "bench` makes them (the paper traces many rays per batch, where sampling pays more)");
+    setting_widget(s, "compare-spp", {"##compare spp"});
     ImGui::SameLine();
     ImGui::TextDisabled(s.playback.frames
                             ? "this frame's camera rays, every method and update, median of 3 "

@@ -45,15 +45,9 @@ void draw_timeline(ViewerState& s) {
     }
     ImGui::SameLine();
     ImGui::SetNextItemWidth(speed_width);
-    ImGui::SliderFloat("##speed", &p.speed, float(setting_range("speed").min),
-                       float(setting_range("speed").ui_max), "speed %.2gx",
-                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "animation seconds per second. A frame is shown once its first pass is\n"
-            "rendered, so a slow method shows fewer frames, each at its true time.");
+    setting_widget(s, "speed", {"##speed", "speed %.2gx"});
     ImGui::SameLine();
-    ImGui::Checkbox("loop", &p.loop);
+    setting_widget(s, "loop");
     if (!p.error.empty() && ImGui::IsWindowHovered()) ImGui::SetTooltip("%s", p.error.c_str());
     s.placements.push_back({"Timeline",
                             {ImGui::GetWindowPos().x, ImGui::GetWindowPos().y,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "render/render_limits.h"
 #include "render/render_memory.h"
 #include "util/error.h"
 
@@ -14,11 +15,13 @@ void validate(const RenderSettings& s) {
     if (s.width < 1 || s.width > 16384 || s.height < 1 || s.height > 16384)
         fail("image size must be 1..16384 pixels per side, got " + std::to_string(s.width) + "x" +
              std::to_string(s.height));
-    if (s.max_depth < 0 || s.max_depth > 1024)
-        fail("max depth must be 0..1024, got " + std::to_string(s.max_depth));
+    if (s.max_depth < 0 || s.max_depth > kMaxMaxDepth)
+        fail("max depth must be 0.." + std::to_string(kMaxMaxDepth) + ", got " +
+             std::to_string(s.max_depth));
     if (s.roulette_depth < 0) fail("roulette depth must be >= 0");
-    if (s.ao_samples < 1 || s.ao_samples > 1024)
-        fail("ao samples must be 1..1024, got " + std::to_string(s.ao_samples));
+    if (s.ao_samples < 1 || s.ao_samples > kMaxAoSamples)
+        fail("ao samples must be 1.." + std::to_string(kMaxAoSamples) + ", got " +
+             std::to_string(s.ao_samples));
     if (!std::isfinite(s.ao_distance) || s.ao_distance < 0.0f)
         fail("ao distance must be finite and >= 0 (0: a quarter of the scene size)");
     for (int c = 0; c < 3; ++c)

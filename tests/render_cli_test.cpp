@@ -305,7 +305,9 @@ TEST_F(RenderCli, ASecondInterruptExitsAtOnce) {
         path("output.txt"));
     ASSERT_TRUE(render.wait_for_output("loaded builtin:sphere", std::chrono::seconds(60)))
         << render.output();
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    // Inside the batch: a Ctrl-C before it (the camera rays take about a second under the
+    // sanitizers on a loaded machine) stops the render at its first batch, with the report.
+    std::this_thread::sleep_for(std::chrono::seconds(3));
     render.signal(SIGINT);
     // Signals do not queue: a second Ctrl-C sent before the first was delivered (a loaded
     // machine may not run the process for 50 ms) merges with it. So Ctrl-C again each second

@@ -94,7 +94,7 @@ TEST(Settings, EveryEntryRoundTripsThroughTheCommandLine) {
 
 // A value the setting refuses is refused by `set` and by the flag alike, with the same words.
 TEST(Settings, BadValuesAreRefusedByTheFlagAsByTheScript) {
-    for (const auto& [key, text] :
+    for (const auto& [key_, text_] :
          std::vector<std::pair<std::string, std::string>>{{"max-depth", "1025"},
                                                           {"spp", "0"},
                                                           {"speed", "9"},
@@ -102,6 +102,7 @@ TEST(Settings, BadValuesAreRefusedByTheFlagAsByTheScript) {
                                                           {"method", "foo"},
                                                           {"compare-spp", "3"},
                                                           {"time", "nan"}}) {
+        const std::string &key = key_, &text = text_;  // lambdas cannot capture bindings (clang 14)
         ViewerState s = animated_state();
         const std::string error = error_of([&] { apply_setting(s, key, text); });
         EXPECT_NE(error, "") << key;

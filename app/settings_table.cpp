@@ -1,7 +1,6 @@
 #include "settings_table.h"
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -65,98 +64,60 @@ constexpr ChoiceEntry kCompareSteps[] = {
 constexpr ChoiceEntry kPlayScales[] = {
     {1, "1", "full resolution"}, {2, "2", "half resolution"}, {4, "4", "quarter resolution"}};
 
+/// A setting stored in the field at the end of `Path`; the kinds below add their ranges.
+template <auto... Path>
+constexpr SettingInfo field(std::string_view key, std::string_view label, std::string_view help,
+                            Kind kind) {
+    return {.key = key,
+            .label = label,
+            .help = help,
+            .kind = kind,
+            .get = get_field<Path...>,
+            .set = set_field<Path...>};
+}
+
 template <auto... Path>
 constexpr SettingInfo integer(std::string_view key, std::string_view label, std::string_view help,
                               double min, double max, double ui_max, bool logarithmic = false) {
-    return {key,
-            label,
-            help,
-            Kind::integer,
-            min,
-            max,
-            min,
-            ui_max,
-            logarithmic,
-            {},
-            {},
-            false,
-            get_field<Path...>,
-            set_field<Path...>};
+    SettingInfo info = field<Path...>(key, label, help, Kind::integer);
+    info.min = info.ui_min = min;
+    info.max = max;
+    info.ui_max = ui_max;
+    info.logarithmic = logarithmic;
+    return info;
 }
 
 template <auto... Path>
 constexpr SettingInfo real(std::string_view key, std::string_view label, std::string_view help,
                            double min, double max, double ui_min, double ui_max,
                            bool logarithmic = false) {
-    return {key,
-            label,
-            help,
-            Kind::real,
-            min,
-            max,
-            ui_min,
-            ui_max,
-            logarithmic,
-            {},
-            {},
-            false,
-            get_field<Path...>,
-            set_field<Path...>};
+    SettingInfo info = integer<Path...>(key, label, help, min, max, ui_max, logarithmic);
+    info.kind = Kind::real;
+    info.ui_min = ui_min;
+    return info;
 }
 
 template <const auto& Table, auto... Path>
 constexpr SettingInfo choice(std::string_view key, std::string_view label, std::string_view help) {
-    return {key,
-            label,
-            help,
-            Kind::choice,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            false,
-            kChoices<Table>,
-            Table.what,
-            false,
-            get_field<Path...>,
-            set_field<Path...>};
+    SettingInfo info = field<Path...>(key, label, help, Kind::choice);
+    info.choices = kChoices<Table>;
+    info.choice_what = Table.what;
+    return info;
 }
 
 template <auto... Path>
 constexpr SettingInfo steps(std::string_view key, std::string_view label, std::string_view help,
                             std::span<const ChoiceEntry> values) {
-    return {key,
-            label,
-            help,
-            Kind::steps,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            false,
-            values,
-            {},
-            false,
-            get_field<Path...>,
-            set_field<Path...>};
+    SettingInfo info = field<Path...>(key, label, help, Kind::steps);
+    info.choices = values;
+    return info;
 }
 
 template <auto... Path>
 constexpr SettingInfo toggle(std::string_view key, std::string_view label, std::string_view help) {
-    return {key,
-            label,
-            help,
-            Kind::toggle,
-            0.0,
-            1.0,
-            0.0,
-            1.0,
-            false,
-            {},
-            {},
-            false,
-            get_field<Path...>,
-            set_field<Path...>};
+    SettingInfo info = field<Path...>(key, label, help, Kind::toggle);
+    info.max = info.ui_max = 1.0;
+    return info;
 }
 
 /// The animation's settings: only an animated scene has them.
@@ -318,12 +279,11 @@ double parse_setting(const SettingInfo& info, std::string_view text) {
         throw InputError("unknown " + std::string(info.choice_what) + " '" + std::string(text) +
                          "' (known: " + choice_names(info, ", ") + ")");
     }
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value))
+    const std::optional<double> value = parse_number(text);
+    if (!value)
         throw InputError("'" + std::string(info.key) + "' needs a number, got '" +
                          std::string(text) + "'");
-    return check_setting(info, value);
+    return check_setting(info, *value);
 }
 
 void set_setting(ViewerState& s, const SettingInfo& info, std::string_view text) {

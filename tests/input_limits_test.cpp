@@ -12,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "input_error.h"
 #include "sanitizers.h"
 #include "scene/obj_loader.h"
 #include "scene/rigid_animation.h"
@@ -26,17 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-/// The message of the InputError `f` throws (fails the test when it throws none).
-template <typename F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError";
-    return {};
-}
+using test::error_of;  // "" when nothing is thrown: every check below then fails
 
 fs::path make_fifo(const TempDir& dir, const std::string& name) {
     const fs::path path = dir.path() / name;

@@ -4,11 +4,13 @@
 #include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <vector>
 
 #include "scene/obj_loader.h"
 #include "util/error.h"
 #include "util/frame_pattern.h"
+#include "util/input_file.h"
 #include "util/spec_options.h"
 
 namespace edacrt {
@@ -32,16 +34,10 @@ std::vector<std::int64_t> find_frames(const FramePattern& pattern) {
             throw InputError("sequence " + pattern.pattern() + ": cannot read " +
                              it->path().string() + " in " + directory.string() + ": " +
                              error.message());
-        // Skipped, a FIFO or device shortened the sequence or read as a missing frame:
-        // refused by name, as every reader refuses them (util/input_file.h).
-        if (!regular) {
-            const auto type = it->status(error).type();
-            const char* kind = type == std::filesystem::file_type::directory ? "a directory"
-                               : type == std::filesystem::file_type::fifo    ? "a FIFO"
-                                                                             : "a device or socket";
-            throw InputError("sequence " + pattern.pattern() + ": " + it->path().string() +
-                             ": not a regular file (" + kind + "); a key frame must be a file");
-        }
+        // Skipped, a FIFO or device shortened the sequence or read as a missing frame: the
+        // check every reader makes refuses it by name.
+        if (!regular)
+            check_input_file(it->path(), "key frame", std::numeric_limits<std::uint64_t>::max());
         frames.push_back(*index);
     }
     if (error)

@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <cassert>
-#include <charconv>
 #include <cmath>
 #include <string>
 
 #include "geometry/binning.h"
 #include "util/error.h"
+#include "util/exact_text.h"
 
 namespace edacrt {
 namespace {
@@ -172,10 +172,8 @@ class Builder {
 }  // namespace
 
 void set_bvh_option(BvhBuildOptions& options, std::string_view key, std::string_view text) {
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    const bool number =
-        error == std::errc{} && end == text.data() + text.size() && std::isfinite(value);
+    const std::optional<double> number = parse_number(text);
+    const double value = number.value_or(0.0);
     const auto require = [&](bool ok, const char* range) {
         if (!number || !ok)
             throw InputError("bvh option " + std::string(key) + ": '" + std::string(text) +

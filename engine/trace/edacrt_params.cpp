@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <type_traits>
 
 #include "util/error.h"
+#include "util/exact_text.h"
 
 namespace edacrt {
 namespace {
@@ -266,10 +266,9 @@ void set_param(EdacrtParams& p, const ParamInfo& info, std::string_view text) {
             if (info.choices[i] == text) return info.set(p, double(i));
         fail("is not one of " + list(info.choices));
     }
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value))
-        fail("is not a number");
+    const std::optional<double> number = parse_number(text);
+    if (!number) fail("is not a number");
+    const double value = *number;
     if (info.kind == Kind::integer && value != std::floor(value)) fail("is not an integer");
     if (value < info.min || value > info.max) fail("is outside " + range_text(info));
     info.set(p, value);

@@ -4,6 +4,7 @@
 // Scrambling" (JCGT 2020). Every pair of dimensions is an independently scrambled 2D Sobol'
 // sequence, so any prefix of a pixel's samples is stratified and renders are reproducible for
 // any thread count.
+#include <array>
 #include <cstdint>
 #include <glm/vec2.hpp>
 
@@ -31,20 +32,36 @@ constexpr std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) {
     return x;
 }
 
-constexpr std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t seed) {
-    return reverse_bits(laine_karras(reverse_bits(x), seed));
+/// The second Sobol' dimension's direction numbers, v_0 = 2^31 and v_k = v_{k-1} ^ (v_{k-1} >> 1)
+/// (the Pascal matrix), bit-reversed and XOR-summed per byte: kPascal[j][b] is the reversed sum of
+/// v_k over the set bits k of byte b placed at bits 24 - 8j .. 31 - 8j of the index. So
+/// reversed(y) is four table reads of the reversed index's bytes, where summing over the index's
+/// bits was a loop of up to 32 unpredictable branches (a tenth of a path-traced frame).
+constexpr auto make_pascal_tables() {
+    std::array<std::array<std::uint32_t, 256>, 4> tables{};
+    std::uint32_t v[32];
+    v[0] = 0x80000000u;
+    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int j = 0; j < 4; ++j)
+        for (std::uint32_t b = 0; b < 256; ++b) {
+            std::uint32_t y = 0;
+            // Bit i of byte j of the reversed index is bit 31 - (8j + i) of the index.
+            for (int i = 0; i < 8; ++i)
+                if ((b >> i) & 1u) y ^= v[31 - (8 * j + i)];
+            tables[std::size_t(j)][b] = reverse_bits(y);
+        }
+    return tables;
 }
+inline constexpr auto kPascal = make_pascal_tables();
 
-/// The first two Sobol' dimensions: van der Corput, and the Pascal-matrix dimension whose
-/// direction numbers are v_k = v_{k-1} ^ (v_{k-1} >> 1).
-constexpr void sobol_2d(std::uint32_t index, std::uint32_t& x, std::uint32_t& y) {
-    x = reverse_bits(index);
-    y = 0;
-    std::uint32_t direction = 0x80000000u;
-    for (; index != 0; index >>= 1) {
-        if (index & 1u) y ^= direction;
-        direction ^= direction >> 1;
-    }
+/// The first two Sobol' dimensions of the scrambled index whose bit reversal is `reversed`:
+/// van der Corput (the index reversed) and the Pascal-matrix dimension, each returned
+/// bit-reversed, as the Owen scramble that follows takes them.
+constexpr void sobol_2d_reversed(std::uint32_t reversed, std::uint32_t& x_reversed,
+                                 std::uint32_t& y_reversed) {
+    x_reversed = reverse_bits(reversed);
+    y_reversed = kPascal[0][reversed & 0xffu] ^ kPascal[1][(reversed >> 8) & 0xffu] ^
+                 kPascal[2][(reversed >> 16) & 0xffu] ^ kPascal[3][reversed >> 24];
 }
 
 }  // namespace sobol_detail
@@ -60,13 +77,16 @@ constexpr double shutter_time(double time, double shutter, std::uint32_t sample)
 }
 
 /// A point in [0,1)^2: sample `index` of the 2D sequence identified by `stream` (a hash of the
-/// seed, the pixel and the dimension pair).
+/// seed, the pixel and the dimension pair). Each coordinate is Owen-scrambled,
+/// reverse(laine_karras(reverse(c))), of the shuffled index's Sobol' point: the shuffle
+/// reverse(laine_karras(reverse(index))) is kept reversed, as both coordinates start from it,
+/// and no value is reversed twice.
 constexpr glm::vec2 sobol_sample_2d(std::uint32_t index, std::uint32_t stream) {
     using namespace sobol_detail;
     std::uint32_t x = 0, y = 0;
-    sobol_2d(nested_uniform_scramble(index, stream), x, y);
-    x = nested_uniform_scramble(x, hash_combine(stream, 0xa511e9b3u));
-    y = nested_uniform_scramble(y, hash_combine(stream, 0x63d83595u));
+    sobol_2d_reversed(laine_karras(reverse_bits(index), stream), x, y);
+    x = reverse_bits(laine_karras(x, hash_combine(stream, 0xa511e9b3u)));
+    y = reverse_bits(laine_karras(y, hash_combine(stream, 0x63d83595u)));
     return {hash_to_unit_float(x), hash_to_unit_float(y)};
 }
 

@@ -110,6 +110,11 @@ inline constexpr int kMaxDepth = 160;
 /// can interleave on the thread meanwhile.
 struct RecursionScratch {
     PartitionScratch partition;  // of the triangles
+    // The bin of the node's i-th triangle, from the split's binning (K <= 256), so that the
+    // partition reads it in order instead of each triangle's centroid again. An enum, not a
+    // char type: a char store may alias anything and would reload every operand per triangle.
+    enum class BinIndex : std::uint8_t {};
+    std::vector<BinIndex> bin_of;
     std::vector<Bin> bins;
     std::vector<BinSplit> splits;
     SampleCounts sampling;
@@ -118,6 +123,7 @@ struct RecursionScratch {
     void reserve(int k, std::size_t triangles) {
         const auto K = std::size_t(k);
         partition.reserve(triangles);
+        bin_of.resize(std::max(bin_of.size(), triangles));
         if (bins.size() == K) return;
         bins.resize(K);
         splits.resize(K - 1);
@@ -167,13 +173,15 @@ class Recursion {
         obs_.split(visit, node, split);
         std::uint32_t* middle;
         {
+            // Each triangle's bin, as binning left it (RecursionScratch::bin_of).
+            RecursionScratch& sc = scratch();
             [[maybe_unused]] auto timer = obs_.time(Phase::binning, node.depth);
-            middle = node.tris + isolated([&] {
-                         return partition(
-                             node.tris, node.tri_count, scratch().partition, [&](std::uint32_t t) {
-                                 return split.bins(scene_.centroids[t]) <= split.last_left_bin;
-                             });
-                     });
+            middle =
+                node.tris + isolated([&] {
+                    return partition(node.tris, node.tri_count, sc.partition, [&](std::size_t i) {
+                        return int(sc.bin_of[i]) <= split.last_left_bin;
+                    });
+                });
         }
         assert(std::size_t(middle - node.tris) == split.count[0]);
         std::uint32_t* child_tris[2] = {node.tris, middle};
@@ -398,8 +406,13 @@ class Recursion {
         isolated([&] {
             edacrt::fill_bins(
                 sc.bins, 0, node.tri_count,
-                [&](std::size_t i) { return axis(scene_.centroids[node.tris[i]]); },
-                [&](std::size_t i) { return scene_.bounds[node.tris[i]]; }, kParallelItems);
+                [&](std::size_t i) {
+                    const int bin = axis(scene_.centroids[node.tris[i]]);
+                    sc.bin_of[i] = RecursionScratch::BinIndex(bin);
+                    return bin;
+                },
+                [&](std::size_t i) -> const Aabb& { return scene_.bounds[node.tris[i]]; },
+                kParallelItems);
         });
         sweep_bins(sc.bins, sc.splits);
         return int(std::count_if(sc.bins.begin(), sc.bins.end(),

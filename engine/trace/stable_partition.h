@@ -27,17 +27,18 @@ struct PartitionScratch {
     }
 };
 
-/// Moves the items for which `pred` holds to the front, both groups keeping their order, and
-/// returns how many there are. `pred` runs once per item, from any thread for large ranges.
+/// Moves the items for which `keep(i)` holds (i: the item's position) to the front, both groups
+/// keeping their order, and returns how many there are. `keep` runs once per position, from any
+/// thread for large ranges.
 template <class Pred>
 std::size_t partition(std::uint32_t* items, std::size_t count, PartitionScratch& scratch,
-                      const Pred& pred) {
+                      const Pred& keep_at) {
     std::uint32_t* rejected = scratch.items.data();
     if (count < kParallelItems) {
         std::size_t kept = 0, dropped = 0;
         for (std::size_t i = 0; i < count; ++i) {
             const std::uint32_t item = items[i];
-            if (pred(item))
+            if (keep_at(i))
                 items[kept++] = item;  // kept <= i: never overwrites an unread item
             else
                 rejected[dropped++] = item;
@@ -53,7 +54,7 @@ std::size_t partition(std::uint32_t* items, std::size_t count, PartitionScratch&
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
         const std::size_t begin = b * kParallelItems, end = std::min(count, begin + kParallelItems);
         std::size_t kept = 0;
-        for (std::size_t i = begin; i < end; ++i) kept += keep[i] = pred(items[i]);
+        for (std::size_t i = begin; i < end; ++i) kept += keep[i] = keep_at(i);
         offset[b + 1] = kept;
     });
     offset[0] = 0;

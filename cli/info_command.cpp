@@ -27,7 +27,7 @@ struct InfoOptions {
     RenderSettings settings;
     int spp = 16;
     CameraOptions camera;
-    InfoOptions() { settings.samples_per_pass = 4; }
+    InfoOptions() { settings.samples_per_pass = 0; }
 };
 
 nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
@@ -167,7 +167,8 @@ void print_text(const nlohmann::json& j) {
 void run(const InfoOptions& o) {
     RenderSettings settings = o.settings;
     check_flags([&] {
-        settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+        settings.samples_per_pass = resolve_samples_per_pass(
+            settings.samples_per_pass, settings.width, settings.height, o.spp);
         validate(settings);
     });
     const nlohmann::json info = describe(o, settings, load_scene(o.scene));
@@ -199,7 +200,8 @@ std::function<void()> add_info_command(CLI::App& app) {
         ->capture_default_str();
     command
         ->add_option("--samples-per-pass", o.settings.samples_per_pass,
-                     "samples per pixel traced together in one pass (at most --spp)")
+                     "samples per pixel traced together in one pass (at most --spp); 0: about "
+                     "1M paths per pass, at least 4 samples")
         ->capture_default_str();
     flags::add_camera_options(*command, o.camera);
     return [options] { run(*options); };

@@ -45,7 +45,7 @@ struct RenderOptions {
     ExrPixel exr_pixel = ExrPixel::single;
     std::vector<float> sky;
     CameraOptions camera;
-    RenderOptions() { settings.samples_per_pass = 4; }
+    RenderOptions() { settings.samples_per_pass = 0; }
     bool time_budget_only() const { return time_budget > 0.0 && !spp_given; }
 };
 
@@ -96,8 +96,11 @@ void run(RenderOptions o) {
         if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
             throw InputError(
                 "--reference and --stats are for one image: give --time, not --frames");
-        if (!o.time_budget_only())
-            settings.samples_per_pass = std::min(settings.samples_per_pass, o.spp);
+        // Without --spp a time budget ends the render after the pass that reaches it: passes
+        // of at most 4 samples, so that it stops near the budget.
+        settings.samples_per_pass =
+            resolve_samples_per_pass(settings.samples_per_pass, settings.width, settings.height,
+                                     o.time_budget_only() ? 4 : o.spp);
         // Motion blur renders each pass at its own time of the shutter: passes of one sample.
         if (o.animation.shutter > 0.0) settings.samples_per_pass = 1;
         if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};
@@ -315,7 +318,8 @@ std::function<void()> add_render_command(CLI::App& app) {
         ->expected(3);
     command
         ->add_option("--samples-per-pass", s.samples_per_pass,
-                     "samples per pixel traced together in one pass (at most --spp)")
+                     "samples per pixel traced together in one pass (at most --spp); 0: about "
+                     "1M paths per pass, at least 4 samples (4 with --time-budget alone)")
         ->capture_default_str();
     command
         ->add_option("--wavefront-paths", s.wavefront_paths,

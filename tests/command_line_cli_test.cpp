@@ -63,7 +63,9 @@ TEST(CommandLineCli, BadFlagValuesAreUsageErrors) {
         std::string args, message;
     } cases[] = {
         {render + "--out q.png --exposure nan", "exposure must be a finite number"},
-        {render + "--out q.png --samples-per-pass 0", "samples per pass must be 1..1024, got 0"},
+        {render + "--out q.png --samples-per-pass -1",
+         "--samples-per-pass must be 0..1024 (0: about 1M paths per pass), got -1"},
+        {render + "--out q.png --samples-per-pass 1025", "--samples-per-pass must be 0..1024"},
         {render + "--out q.png --max-depth -5", "max depth must be 0..1024, got -5"},
         {render + "--out q.png --integrator ao --ao-samples 0", "ao samples must be 1..1024"},
         {render + "--out q.png --sky -1,0,0", "sky radiance must be finite and >= 0"},
@@ -84,7 +86,7 @@ TEST(CommandLineCli, BadFlagValuesAreUsageErrors) {
          "--wavefront-paths: expected a whole number"},
         {render + "--out q.png --seed -1", "--seed"},
         {"render --width 8 --height 8 --out q.png", "no scene: give --scene"},
-        {"info builtin:sphere --samples-per-pass 0", "samples per pass must be 1..1024"},
+        {"info builtin:sphere --samples-per-pass -2", "--samples-per-pass must be 0..1024"},
         {"accuracy --scene builtin:sphere --rays 0", "--rays must be 1..10000000"},
         {"bench --scene builtin:sphere --sets nowhere", "unknown ray set"},
     };

@@ -53,11 +53,12 @@ TEST_F(RenderCli, EveryIntegratorWritesAFiniteFloatImage) {
 
 TEST_F(RenderCli, ReferenceErrorIsReportedAfterEveryPassAndFalls) {
     ASSERT_EQ(test::run_cli(kSmall + "--spp 64 --out " + path("ref.pfm")).exit_code, 0);
-    const auto result = test::run_cli(kSmall + "--spp 16 --seed 5 --reference " + path("ref.pfm") +
-                                      " --stats " + path("stats.json") + " --out " + path("x.png"));
+    const auto result = test::run_cli(
+        kSmall + "--spp 16 --samples-per-pass 4 --seed 5 --reference " + path("ref.pfm") +
+        " --stats " + path("stats.json") + " --out " + path("x.png"));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const auto stats = nlohmann::json::parse(std::ifstream(path("stats.json")));
-    // Passes of 4 samples (the default), each reported.
+    // Passes of 4 samples, each reported.
     const auto& passes = stats["passes"];
     ASSERT_EQ(passes.size(), 4u);
     for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(passes[i]["spp"].get<int>(), 4 * int(i + 1));
@@ -68,13 +69,22 @@ TEST_F(RenderCli, ReferenceErrorIsReportedAfterEveryPassAndFalls) {
                                       path("one.json") + " --out " + path("x.png"));
     ASSERT_EQ(single.exit_code, 0) << single.output;
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(path("one.json")))["passes"].size(), 6u);
-    const auto uneven =
-        test::run_cli(kSmall + "--spp 6 --stats " + path("six.json") + " --out " + path("x.png"));
+    const auto uneven = test::run_cli(kSmall + "--spp 6 --samples-per-pass 4 --stats " +
+                                      path("six.json") + " --out " + path("x.png"));
     ASSERT_EQ(uneven.exit_code, 0) << uneven.output;
     const auto six = nlohmann::json::parse(std::ifstream(path("six.json")));
     ASSERT_EQ(six["passes"].size(), 2u);
     EXPECT_EQ(six["passes"][1]["spp"].get<int>(), 6);
-    EXPECT_NE(test::run_cli(kSmall + "--samples-per-pass 0 --out " + path("x.png")).exit_code, 0);
+    // By default a small image takes all its samples in one pass (about 1M paths per pass).
+    const auto whole =
+        test::run_cli(kSmall + "--spp 6 --stats " + path("whole.json") + " --out " + path("x.png"));
+    ASSERT_EQ(whole.exit_code, 0) << whole.output;
+    const auto one_pass = nlohmann::json::parse(std::ifstream(path("whole.json")));
+    ASSERT_EQ(one_pass["passes"].size(), 1u);
+    EXPECT_EQ(one_pass["passes"][0]["spp"].get<int>(), 6);
+    EXPECT_NE(test::run_cli(kSmall + "--samples-per-pass -1 --out " + path("x.png")).exit_code, 0);
+    EXPECT_NE(test::run_cli(kSmall + "--samples-per-pass 1025 --out " + path("x.png")).exit_code,
+              0);  // out of range, even where --spp is smaller
 }
 
 TEST_F(RenderCli, TimeBudgetStopsAProgressiveRender) {
@@ -89,6 +99,7 @@ TEST_F(RenderCli, TimeBudgetStopsAProgressiveRender) {
     for (std::size_t i = 0; i + 1 < passes.size(); ++i)
         EXPECT_LT(passes[i]["seconds"].get<double>(), 0.3) << "pass " << i;
     EXPECT_EQ(stats["spp"].get<int>(), passes.back()["spp"].get<int>());
+    // Passes of 4 samples by default under a time budget, which a pass may overshoot.
     EXPECT_LE(stats["spp"].get<std::size_t>(), 4 * passes.size());
 }
 

@@ -146,6 +146,17 @@ TEST(Determinism, PassesOfSeveralSamplesGiveTheImageOfOneSamplePasses) {
     EXPECT_THROW(validate(bad), InputError);
 }
 
+TEST(Settings, AutoSamplesPerPassGivesPassesOfAboutAMillionPaths) {
+    EXPECT_EQ(auto_samples_per_pass(320, 240, 8), 8);     // 14 wanted, --spp 8
+    EXPECT_EQ(auto_samples_per_pass(320, 240, 64), 14);   // ceil(2^20 / 76,800)
+    EXPECT_EQ(auto_samples_per_pass(1024, 1024, 16), 4);  // at least 4
+    EXPECT_EQ(auto_samples_per_pass(4096, 4096, 16), 4);
+    EXPECT_EQ(auto_samples_per_pass(512, 512, 2), 2);       // at most --spp
+    EXPECT_EQ(auto_samples_per_pass(8, 8, 1 << 20), 1024);  // at most kMaxSamplesPerPass
+    EXPECT_EQ(auto_samples_per_pass(1, 1, 1), 1);
+    EXPECT_EQ(auto_samples_per_pass(16384, 16384, 1), 1);
+}
+
 TEST(Determinism, EmbreeRendersTheSameImageWithinRounding) {
 #ifdef EDACRT_HAS_EMBREE
     // Embree's own arithmetic gives t within ~1e-6, so bounces start from points that differ

@@ -27,8 +27,18 @@ void validate(const RenderSettings& s) {
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(s.sky[c]) || s.sky[c] < 0.0f)
             fail("sky radiance must be finite and >= 0");
-    if (s.samples_per_pass < 1 || s.samples_per_pass > 1024)
-        fail("samples per pass must be 1..1024, got " + std::to_string(s.samples_per_pass));
+    if (s.samples_per_pass < 1 || s.samples_per_pass > kMaxSamplesPerPass)
+        fail("samples per pass must be 1.." + std::to_string(kMaxSamplesPerPass) + ", got " +
+             std::to_string(s.samples_per_pass));
+}
+
+int auto_samples_per_pass(int width, int height, int spp) {
+    const std::uint64_t pixels =
+        std::uint64_t(std::max(width, 1)) * std::uint64_t(std::max(height, 1));
+    const std::uint64_t samples =
+        std::max<std::uint64_t>(4, (kAutoPassPaths + pixels - 1) / pixels);
+    return int(std::clamp<std::uint64_t>(std::min(samples, std::uint64_t(std::max(spp, 1))), 1,
+                                         kMaxSamplesPerPass));
 }
 
 std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths) {
@@ -38,6 +48,14 @@ std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths)
     else if (settings.integrator == Integrator::ao)
         wave /= std::uint64_t(settings.ao_samples);
     return std::size_t(std::clamp<std::uint64_t>(std::min(wave, paths), 1, paths > 0 ? paths : 1));
+}
+
+int resolve_samples_per_pass(int requested, int width, int height, int spp) {
+    if (requested < 0 || requested > kMaxSamplesPerPass)
+        throw InputError("--samples-per-pass must be 0.." + std::to_string(kMaxSamplesPerPass) +
+                         " (0: about 1M paths per pass), got " + std::to_string(requested));
+    return std::min(requested == 0 ? auto_samples_per_pass(width, height, spp) : requested,
+                    std::max(spp, 1));
 }
 
 }  // namespace edacrt

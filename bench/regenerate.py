@@ -33,6 +33,7 @@ GENERATORS = {
     "bvh": (["bench/bvh_baseline.py", "--readme"], ["## BVH baseline"]),
     "bench": (["bench/bench_run.py", "--readme"], ["## edacrt bench, measured"]),
     "dynamic": (["bench/dynamic.py", "--readme"], ["## Dynamic scenes"]),
+    "render": (["bench/render_bench.py", "--readme"], ["## The render, against Embree"]),
 }
 
 

@@ -13,6 +13,7 @@ inline __m256 sub(__m256 a, __m256 b) { return _mm256_sub_ps(a, b); }
 inline __m256 any(__m256 a, __m256 b) { return _mm256_or_ps(a, b); }
 inline __m256 any(__m256 a, __m256 b, __m256 c) { return any(any(a, b), c); }
 inline __m256 all(__m256 a, __m256 b) { return _mm256_and_ps(a, b); }
+inline __m256 all(__m256 a, __m256 b, __m256 c) { return all(all(a, b), c); }
 /// std::max(a, b), i.e. a < b ? b : a: a NaN in a is kept, as in the scalar code.
 inline __m256 max(__m256 a, __m256 b) { return _mm256_max_ps(b, a); }
 /// std::max({a, b, c}).

@@ -106,8 +106,9 @@ bool refine_hit_in_double(const WatertightRay& r, const Triangle& tri, float tmi
 bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
                              const ShearedTriangle<float>& f, float tmin, float tmax,
                              TriangleHit& out) {
-    const ShearedTriangle<double> d = shear_triangle_in_double(r, tri);
     const TriangleErrors e = corner_errors(r, f);
+    if (separated_from_ray(f, e)) return false;
+    const ShearedTriangle<double> d = shear_triangle_in_double(r, tri);
     const double u = edge_uncertain(f.u, e.c, e.b) ? d.u : double(f.u);
     const double v = edge_uncertain(f.v, e.a, e.c) ? d.v : double(f.v);
     const double w = edge_uncertain(f.w, e.b, e.a) ? d.w : double(f.w);

@@ -80,11 +80,25 @@ struct ShearedTriangles8 {
         const __m256 magnitude = abs(e);
         return any(cmp<_CMP_NGT_UQ>(magnitude, bound), cmp<_CMP_NLT_UQ>(magnitude, set(kInfinity)));
     };
-    const __m256 undecided_edges = any(uncertain(u, 2, 1), uncertain(v, 0, 2), uncertain(w, 1, 0));
     const __m256 zero = _mm256_setzero_ps();
+    // separated_from_ray: corners beyond twice their error on one side of x = 0 or y = 0.
+    const auto beyond = [&](const __m256(&c)[3]) {
+        const __m256 margin[3] = {add(corner_error[0], corner_error[0]),
+                                  add(corner_error[1], corner_error[1]),
+                                  add(corner_error[2], corner_error[2])};
+        const auto side = [&](auto above) {
+            return all(above(c[0], margin[0]), above(c[1], margin[1]), above(c[2], margin[2]));
+        };
+        return any(side([](__m256 p, __m256 m) { return cmp<_CMP_GT_OQ>(p, m); }),
+                   side([&](__m256 p, __m256 m) { return cmp<_CMP_LT_OQ>(p, sub(zero, m)); }));
+    };
+    const __m256 separated = any(beyond(x), beyond(y));
+    const __m256 undecided_edges = _mm256_andnot_ps(
+        separated, any(uncertain(u, 2, 1), uncertain(v, 0, 2), uncertain(w, 1, 0)));
     const __m256 outside =
-        all(any(cmp<_CMP_LT_OQ>(u, zero), cmp<_CMP_LT_OQ>(v, zero), cmp<_CMP_LT_OQ>(w, zero)),
-            any(cmp<_CMP_GT_OQ>(u, zero), cmp<_CMP_GT_OQ>(v, zero), cmp<_CMP_GT_OQ>(w, zero)));
+        any(separated,
+            all(any(cmp<_CMP_LT_OQ>(u, zero), cmp<_CMP_LT_OQ>(v, zero), cmp<_CMP_LT_OQ>(w, zero)),
+                any(cmp<_CMP_GT_OQ>(u, zero), cmp<_CMP_GT_OQ>(v, zero), cmp<_CMP_GT_OQ>(w, zero))));
     // Most lanes miss: skip the distance where no lane's line passes through its triangle.
     const unsigned edges = unsigned(_mm256_movemask_ps(undecided_edges));
     if ((valid & (edges | ~unsigned(_mm256_movemask_ps(outside)))) == 0) {

@@ -58,16 +58,21 @@ void EdacrtTracer::prepare_triangles() {
         [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
             for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
                 const Triangle& tri = triangles_[prim];
+                // A triangle that can never be hit takes no reference (has_coincident_corners).
+                const bool never_hit = has_coincident_corners(tri);
                 if (!pieces) {
+                    scene_.prims[prim] = never_hit ? kUnused : std::uint32_t(prim);
+                    if (never_hit) continue;
                     scene_.bounds[prim] = conservative_bounds(tri);
                     scene_.centroids[prim] = centroid(tri);
-                    scene_.prims[prim] = std::uint32_t(prim);
                     sum.box.extend(scene_.bounds[prim]);
+                    ++sum.made;
                     continue;
                 }
                 const std::size_t first = plan.first[prim], count = plan.first[prim + 1] - first;
                 const std::size_t made =
-                    count == 1
+                    never_hit ? 0
+                    : count == 1
                         ? (scene_.bounds[first] = conservative_bounds(tri), 1)
                         : split_triangle(tri, plan.grid,
                                          std::span<Aabb>(scene_.bounds.data() + first, count));
@@ -87,7 +92,8 @@ void EdacrtTracer::prepare_triangles() {
             return a;
         });
     scene_.box = sums.box;
-    if (pieces && sums.made < n) {  // a piece that could not be cut left slots unused
+    // Slots left unused: triangles never hit, pieces that could not be cut.
+    if (sums.made < n) {
         std::size_t kept = 0;
         for (std::size_t i = 0; i < n; ++i) {
             if (scene_.prims[i] == kUnused) continue;

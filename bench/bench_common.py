@@ -2,6 +2,7 @@
 lists of assets/scenes.json, the one scene list, also read by `edacrt bench`) and their views,
 and running a command that must succeed."""
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -9,6 +10,9 @@ from typing import NamedTuple
 
 ROOT = Path(__file__).resolve().parent.parent
 MANIFEST = ROOT / "assets" / "scenes.json"
+# The large scenes: $EDACRT_SCENES, else ../shared/scenes beside the repository (each script's
+# --scenes default).
+SCENES_DIR = Path(os.environ.get("EDACRT_SCENES", ROOT.parent / "shared" / "scenes"))
 
 
 class Scene(NamedTuple):

@@ -14,7 +14,6 @@ are means over the runs, the other counters come from the first run's --stats.
 """
 import argparse
 import json
-import os
 import re
 import statistics
 import subprocess
@@ -24,12 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-from bench_common import ROOT, scene_list
+from bench_common import ROOT, SCENES_DIR, scene_list
 from readme_section import generated_line, splice
 
 HEADING = "## Deviations from the paper, measured"
 
-SCENES = Path(os.environ.get("EDACRT_SCENES", ROOT.parent / "shared" / "scenes"))
 
 # (name, flags, what the flags put back to the paper's choice)
 VARIANTS = [
@@ -51,7 +49,7 @@ VARIANTS = [
     ("dacrt", ["--preset", "dacrt"], "surface area, direction sign, always filter"),
 ]
 
-SETS = [(s.name, s.relative) for s in scene_list("deviations")]  # under SCENES
+SETS = [(s.name, s.relative) for s in scene_list("deviations")]  # under SCENES_DIR
 
 
 def edacrt(build, *args):
@@ -154,7 +152,7 @@ def main():
     started = time.time()
     results = {}
     for name, relative in SETS:
-        scene = SCENES / relative
+        scene = SCENES_DIR / relative
         if not scene.exists():
             print(f"skipping {name}: {scene} not found", file=sys.stderr)
             continue

@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
 
-from bench_common import ROOT, run as run_checked, scene_list  # noqa: E402
+from bench_common import ROOT, SCENES_DIR, run as run_checked, scene_list  # noqa: E402
 from readme_section import generated_line, revision, splice  # noqa: E402
 
 HEADING = "## Dynamic scenes"
@@ -180,7 +180,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
-    parser.add_argument("--scenes", type=Path, default=ROOT.parent / "shared" / "scenes")
+    parser.add_argument("--scenes", type=Path, default=SCENES_DIR)
     parser.add_argument("--size", type=int, default=512, help="image width and height")
     parser.add_argument("--frames", type=int, default=8, help="timed frames per set")
     parser.add_argument("--threads", type=int, default=2)

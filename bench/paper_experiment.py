@@ -26,7 +26,7 @@ import sys
 import time
 from pathlib import Path
 
-from bench_common import ROOT, run as run_checked, scene_list
+from bench_common import ROOT, SCENES_DIR, run as run_checked, scene_list
 from readme_section import generated_line, revision, splice
 
 import matplotlib
@@ -469,7 +469,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
-    parser.add_argument("--scenes", type=Path, default=ROOT.parent / "shared" / "scenes")
+    parser.add_argument("--scenes", type=Path, default=SCENES_DIR)
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "paper")
     parser.add_argument("--size", type=int, default=512, help="image width and height")
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per variant")

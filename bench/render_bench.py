@@ -12,7 +12,6 @@ ratio to Embree the median of the per-round ratios.
 import argparse
 import functools
 import json
-import os
 import random
 import statistics
 import sys
@@ -20,7 +19,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from bench_common import ROOT, run as run_checked, scene_list
+from bench_common import ROOT, SCENES_DIR, run as run_checked, scene_list
 from readme_section import generated_line, splice
 
 HEADING = "## The render, against Embree"
@@ -91,8 +90,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
-    parser.add_argument("--scenes", type=Path,
-                        default=Path(os.environ.get("EDACRT_SCENES", ROOT.parent / "shared" / "scenes")))
+    parser.add_argument("--scenes", type=Path, default=SCENES_DIR)
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=240)
     parser.add_argument("--spp", type=int, default=8)

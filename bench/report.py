@@ -9,7 +9,6 @@ Uses Debian's /usr/bin/python3 with python3-matplotlib (installed by scripts/set
 """
 import argparse
 import json
-import os
 import statistics
 import subprocess
 import sys

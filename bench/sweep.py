@@ -15,12 +15,11 @@ import argparse
 import functools
 import json
 import math
-import os
 import sys
 import time
 from pathlib import Path
 
-from bench_common import ROOT, run as run_checked, scene_list
+from bench_common import ROOT, SCENES_DIR, run as run_checked, scene_list
 from readme_section import generated_line, revision, splice
 
 HEADING = "## Each method at its best: the switch sweep"
@@ -218,8 +217,7 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", type=Path, default=ROOT / "build")
     parser.add_argument("--scenes", type=Path,
-                        default=Path(os.environ.get("EDACRT_SCENES",
-                                                    ROOT.parent / "shared" / "scenes")))
+                        default=SCENES_DIR)
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "sweep")
     parser.add_argument("--size", type=int, default=512, help="image width and height")
     parser.add_argument("--repeat", type=int, default=5, help="timed frames per variant")

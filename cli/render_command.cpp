@@ -96,11 +96,9 @@ void run(RenderOptions o) {
         if (frames.size() > 1 && (!o.reference.empty() || !o.common.stats_path.empty()))
             throw InputError(
                 "--reference and --stats are for one image: give --time, not --frames");
-        // Without --spp a time budget ends the render after the pass that reaches it: passes
-        // of at most 4 samples, so that it stops near the budget.
         settings.samples_per_pass =
             resolve_samples_per_pass(settings.samples_per_pass, settings.width, settings.height,
-                                     o.time_budget_only() ? 4 : o.spp);
+                                     o.time_budget_only() ? 0 : o.spp);
         // Motion blur renders each pass at its own time of the shutter: passes of one sample.
         if (o.animation.shutter > 0.0) settings.samples_per_pass = 1;
         if (!o.sky.empty()) settings.sky = {o.sky[0], o.sky[1], o.sky[2]};

@@ -104,6 +104,23 @@ bool reference_hit(const Ray& ray, const Triangle& tri, double& t, double& u, do
     return true;
 }
 
+/// The reference crossing's distance to the nearest edge (negative outside): each edge's
+/// barycentric times twice the area over that edge's length.
+double edge_margin(const Triangle& tri, double u, double v) {
+    const glm::dvec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
+    const double doubled_area = glm::length(glm::cross(p1 - p0, p2 - p0));
+    return std::min({(1.0 - u - v) * doubled_area / glm::length(p2 - p1),
+                     u * doubled_area / glm::length(p2 - p0),
+                     v * doubled_area / glm::length(p1 - p0)});
+}
+
+/// What float can resolve around the triangle seen from `org`: 2^-18 of the largest coordinate
+/// magnitude (the direction itself is rounded).
+double float_resolution(const Triangle& tri, const glm::vec3& org) {
+    return 0x1p-18 * std::max({glm::length(glm::dvec3(tri.p0)), glm::length(glm::dvec3(tri.p1)),
+                               glm::length(glm::dvec3(tri.p2)), glm::length(glm::dvec3(org))});
+}
+
 TEST(TriangleIntersection, AgreesWithDoublePrecisionOnRandomRays) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> coord(-1.0f, 1.0f);
@@ -167,17 +184,8 @@ TEST(TriangleIntersection, NeedlesAndSliversFromCloseByAgreeWithDoublePrecision)
         const Ray ray{org, glm::vec3(target) - org};
         double t, u, v;
         if (!reference_hit(ray, tri, t, u, v)) continue;
-        // The crossing's distance to each edge: its barycentric times twice the area over that
-        // edge's length.
-        const glm::dvec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
-        const double doubled_area = glm::length(glm::cross(p1 - p0, p2 - p0));
-        const double margin = std::min({(1.0 - u - v) * doubled_area / glm::length(p2 - p1),
-                                        u * doubled_area / glm::length(p2 - p0),
-                                        v * doubled_area / glm::length(p1 - p0)});
-        const double resolution =
-            0x1p-18 * std::max({glm::length(p0), glm::length(p1), glm::length(p2),
-                                glm::length(glm::dvec3(org))});
-        if (std::abs(margin) < resolution || t <= 0.0) continue;
+        const double margin = edge_margin(tri, u, v);
+        if (std::abs(margin) < float_resolution(tri, org) || t <= 0.0) continue;
         ++decided;
         TriangleHit hit;
         const bool got = hit_triangle(ray, tri, hit);
@@ -220,15 +228,8 @@ TEST(TriangleIntersection, FarSmallTrianglesBesideTheRayAgreeWithDoublePrecision
         separated += separated_from_ray(sheared, corner_errors(wray, sheared));
         double t, u, v;
         if (!reference_hit(ray, tri, t, u, v)) continue;
-        const glm::dvec3 p0(tri.p0), p1(tri.p1), p2(tri.p2);
-        const double doubled_area = glm::length(glm::cross(p1 - p0, p2 - p0));
-        const double margin = std::min({(1.0 - u - v) * doubled_area / glm::length(p2 - p1),
-                                        u * doubled_area / glm::length(p2 - p0),
-                                        v * doubled_area / glm::length(p1 - p0)});
-        const double resolution =
-            0x1p-18 * std::max({glm::length(p0), glm::length(p1), glm::length(p2),
-                                glm::length(glm::dvec3(org))});
-        if (std::abs(margin) < resolution || t <= 0.0) continue;
+        const double margin = edge_margin(tri, u, v);
+        if (std::abs(margin) < float_resolution(tri, org) || t <= 0.0) continue;
         ++decided;
         TriangleHit hit;
         const bool got = hit_triangle(ray, tri, hit);

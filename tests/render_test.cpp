@@ -155,6 +155,13 @@ TEST(Settings, AutoSamplesPerPassGivesPassesOfAboutAMillionPaths) {
     EXPECT_EQ(auto_samples_per_pass(8, 8, 1 << 20), 1024);  // at most kMaxSamplesPerPass
     EXPECT_EQ(auto_samples_per_pass(1, 1, 1), 1);
     EXPECT_EQ(auto_samples_per_pass(16384, 16384, 1), 1);
+    EXPECT_EQ(auto_samples_per_pass(8, 8, 0), 4);  // a time budget: passes of 4
+    // An explicit value is kept, capped by --spp only when there is one.
+    EXPECT_EQ(resolve_samples_per_pass(16, 320, 240, 0), 16);
+    EXPECT_EQ(resolve_samples_per_pass(16, 320, 240, 8), 8);
+    EXPECT_EQ(resolve_samples_per_pass(0, 320, 240, 8), 8);
+    EXPECT_THROW(resolve_samples_per_pass(-1, 320, 240, 8), InputError);
+    EXPECT_THROW(resolve_samples_per_pass(1025, 320, 240, 8), InputError);
 }
 
 TEST(Determinism, EmbreeRendersTheSameImageWithinRounding) {

@@ -82,15 +82,16 @@ struct ShearedTriangles8 {
     };
     const __m256 zero = _mm256_setzero_ps();
     // separated_from_ray: corners beyond twice their error on one side of x = 0 or y = 0.
-    const auto beyond = [&](const __m256(&c)[3]) {
-        const __m256 margin[3] = {add(corner_error[0], corner_error[0]),
-                                  add(corner_error[1], corner_error[1]),
-                                  add(corner_error[2], corner_error[2])};
-        const auto side = [&](auto above) {
-            return all(above(c[0], margin[0]), above(c[1], margin[1]), above(c[2], margin[2]));
-        };
-        return any(side([](__m256 p, __m256 m) { return cmp<_CMP_GT_OQ>(p, m); }),
-                   side([&](__m256 p, __m256 m) { return cmp<_CMP_LT_OQ>(p, sub(zero, m)); }));
+    __m256 margin[3], below[3];
+    for (int c = 0; c < 3; ++c) {
+        margin[c] = add(corner_error[c], corner_error[c]);
+        below[c] = sub(zero, margin[c]);
+    }
+    const auto beyond = [&](const __m256(&p)[3]) {
+        return any(all(cmp<_CMP_GT_OQ>(p[0], margin[0]), cmp<_CMP_GT_OQ>(p[1], margin[1]),
+                       cmp<_CMP_GT_OQ>(p[2], margin[2])),
+                   all(cmp<_CMP_LT_OQ>(p[0], below[0]), cmp<_CMP_LT_OQ>(p[1], below[1]),
+                       cmp<_CMP_LT_OQ>(p[2], below[2])));
     };
     const __m256 separated = any(beyond(x), beyond(y));
     const __m256 undecided_edges = _mm256_andnot_ps(

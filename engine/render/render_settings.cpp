@@ -37,8 +37,8 @@ int auto_samples_per_pass(int width, int height, int spp) {
         std::uint64_t(std::max(width, 1)) * std::uint64_t(std::max(height, 1));
     const std::uint64_t samples =
         std::max<std::uint64_t>(4, (kAutoPassPaths + pixels - 1) / pixels);
-    return int(std::clamp<std::uint64_t>(std::min(samples, std::uint64_t(std::max(spp, 1))), 1,
-                                         kMaxSamplesPerPass));
+    if (spp <= 0) return 4;  // no sample count: a time budget ends the render
+    return int(std::min<std::uint64_t>({samples, std::uint64_t(spp), kMaxSamplesPerPass}));
 }
 
 std::size_t wavefront_paths(const RenderSettings& settings, std::uint64_t paths) {
@@ -54,8 +54,8 @@ int resolve_samples_per_pass(int requested, int width, int height, int spp) {
     if (requested < 0 || requested > kMaxSamplesPerPass)
         throw InputError("--samples-per-pass must be 0.." + std::to_string(kMaxSamplesPerPass) +
                          " (0: about 1M paths per pass), got " + std::to_string(requested));
-    return std::min(requested == 0 ? auto_samples_per_pass(width, height, spp) : requested,
-                    std::max(spp, 1));
+    if (requested == 0) return auto_samples_per_pass(width, height, spp);
+    return spp > 0 ? std::min(requested, spp) : requested;
 }
 
 }  // namespace edacrt

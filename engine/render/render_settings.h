@@ -60,12 +60,14 @@ inline constexpr int kMaxSamplesPerPass = 1024;
 inline constexpr std::uint64_t kAutoPassPaths = std::uint64_t(1) << 20;
 
 /// Samples per pass for `--samples-per-pass 0`: kAutoPassPaths paths per pass, but at least 4
-/// samples (the interactive default) and at most `spp` and kMaxSamplesPerPass.
+/// samples (the interactive default) and at most `spp` and kMaxSamplesPerPass. `spp` 0: no
+/// sample count (a time budget ends the render after the pass that reaches it), passes of 4,
+/// so that it stops near the budget.
 int auto_samples_per_pass(int width, int height, int spp);
 
-/// The samples per pass a render of `spp` samples per pixel takes for `--samples-per-pass
-/// requested`: 0 is auto_samples_per_pass, and no pass takes more than `spp`. Throws InputError
-/// when `requested` is outside 0..kMaxSamplesPerPass.
+/// The samples per pass a render of `spp` samples per pixel (0: as many as a time budget
+/// allows) takes for `--samples-per-pass requested`: 0 is auto_samples_per_pass, and no pass
+/// takes more than `spp`. Throws InputError when `requested` is outside 0..kMaxSamplesPerPass.
 int resolve_samples_per_pass(int requested, int width, int height, int spp);
 
 /// Throws InputError naming the first setting out of range.

@@ -81,7 +81,8 @@ TEST_F(BenchCli, EveryMethodAndSetAgree) {
 TEST_F(BenchCli, VariantsTakeTheirOwnSettings) {
     const char* variants[] = {"edacrt",
                               "edacrt:preset=paper",
-                              "edacrt:small-nodes=every-ray:second-child=after-first:presplit=0",
+                              "edacrt:small-nodes=every-ray:second-child=after-first:presplit=0:"
+                              "leaf-tris=4:leaf-tris-rays=0",
                               "edacrt:preset=dacrt",
                               "dacrt",
                               "edacrt:leaf-tris=2:leaf-rays=2",
@@ -104,7 +105,8 @@ TEST_F(BenchCli, VariantsTakeTheirOwnSettings) {
         for (const char* v : variants) ASSERT_TRUE(tests.contains({set, v})) << set << " " << v;
         const auto of = [&](const char* v) { return tests.at({set, v}); };
         EXPECT_EQ(of("edacrt:preset=paper"),
-                  of("edacrt:small-nodes=every-ray:second-child=after-first:presplit=0"));
+                  of("edacrt:small-nodes=every-ray:second-child=after-first:presplit=0:"
+                     "leaf-tris=4:leaf-tris-rays=0"));
         EXPECT_EQ(of("dacrt"), of("edacrt:preset=dacrt"));
         EXPECT_NE(of("edacrt"), of("edacrt:preset=paper")) << set;
         EXPECT_LT(of("edacrt:leaf-tris=2:leaf-rays=2").second, of("edacrt").second) << set;

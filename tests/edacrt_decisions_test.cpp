@@ -113,6 +113,13 @@ TEST(EdacrtDecisions, FilterSkippingFollowsEachRule) {
          true, false},
         // Children that will be leaves by count: alpha > 1 - C_bv / (40 C_I) = 0.975...
         {"paper, leaf children", [](EdacrtParams& p) { p.leaf_tris = 40; }, false, false},
+        // ...unless more rays than leaf_tris_rays would reach them: inner children again.
+        {"paper, children of few triangles but many rays",
+         [](EdacrtParams& p) {
+             p.leaf_tris = 40;
+             p.leaf_tris_rays = 99;
+         },
+         true, false},
         // ...or, with C_bv = 30, 0.25.
         {"paper, leaf children, C_bv = 30",
          [](EdacrtParams& p) {
@@ -389,12 +396,45 @@ TEST(EdacrtDecisions, LeavesByCountAndByCost) {
     EXPECT_FALSE(leaf(down, [](EdacrtParams& p) { p.leaf_rays = 99; }));
     EXPECT_TRUE(leaf(down, [](EdacrtParams& p) { p.leaf_tris = 80; }));  // tris <= leaf_tris
     EXPECT_FALSE(leaf(down, [](EdacrtParams& p) { p.leaf_tris = 79; }));
+    // ... reached by at most leaf_tris_rays rays (0: any number).
+    const auto few_triangles = [](std::uint32_t rays) {
+        return [rays](EdacrtParams& p) {
+            p.leaf_tris = 80;
+            p.leaf_tris_rays = rays;
+        };
+    };
+    EXPECT_TRUE(leaf(down, few_triangles(100)));
+    EXPECT_FALSE(leaf(down, few_triangles(99)));
+    EXPECT_TRUE(leaf(down, few_triangles(0)));
     // Rays along x cross both clusters: alpha_L = alpha_R = 1, so a split costs C_T + 80 C_I,
     // more than the leaf's 80 C_I. Only the cost-based leaf (not in the paper) stops there.
     const std::vector<Ray> through = horizontal_rays(-10, 1, 50);
     EXPECT_TRUE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 80; }));
     EXPECT_FALSE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 79; }));
     EXPECT_FALSE(leaf(through, [](EdacrtParams& p) { p.cost_leaf_max_tris = 0; }));
+}
+
+TEST(EdacrtDecisions, FewTrianglesAreALeafOnlyForFewRays) {
+    EdacrtParams p;  // leaves of 8 triangles for at most 256 rays
+    ASSERT_EQ(p.leaf_tris, 8u);
+    ASSERT_EQ(p.leaf_tris_rays, 256u);
+    EXPECT_TRUE(triangle_leaf(p, 8, 256));
+    EXPECT_FALSE(triangle_leaf(p, 8, 257));
+    EXPECT_FALSE(triangle_leaf(p, 3, 1'000'000));
+    EXPECT_FALSE(triangle_leaf(p, 9, 1));
+    // Two triangles are never worth a split (two box tests to spare one triangle test).
+    EXPECT_TRUE(triangle_leaf(p, kAlwaysLeafTris, 1'000'000));
+    EXPECT_TRUE(triangle_leaf(p, 0, 1'000'000));
+    p.leaf_tris = 1;  // ...unless leaf-tris asks for smaller leaves
+    EXPECT_FALSE(triangle_leaf(p, 2, 1));
+    EXPECT_TRUE(triangle_leaf(p, 1, 1'000'000));
+    p.leaf_tris = 8;
+    p.leaf_tris_rays = 0;  // the paper: whatever the rays
+    EXPECT_TRUE(triangle_leaf(p, 8, 1'000'000));
+    EXPECT_FALSE(triangle_leaf(p, 9, 1));
+    const EdacrtParams paper = paper_params();
+    EXPECT_EQ(paper.leaf_tris_rays, 0u);
+    EXPECT_EQ(paper.leaf_tris, 4u);
 }
 
 TEST(EdacrtDecisions, BinsSpanTheNodeBoxOrTheCentroids) {
@@ -562,7 +602,7 @@ TEST(EdacrtPresets, PaperAndDacrtSetTheirChoices) {
 
 TEST(EdacrtParamInfo, EveryParameterParsesPrintsAndRejects) {
     EdacrtParams p;
-    EXPECT_EQ(edacrt_param_info().size(), 20u);
+    EXPECT_EQ(edacrt_param_info().size(), 21u);
     for (const ParamInfo& info : edacrt_param_info()) {
         SCOPED_TRACE(std::string(info.key));
         EXPECT_EQ(find_param(info.key), &info);

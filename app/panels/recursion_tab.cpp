@@ -80,7 +80,7 @@ void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams
     for (int side : {0, 1}) {
         const float estimated = side == 0 ? c.alpha_left : c.alpha_right;
         const std::uint32_t n = side == 0 ? c.left_triangles : c.right_triangles;
-        const float threshold = filter_skip_threshold(params, n);
+        const float threshold = filter_skip_threshold(params, n, node.rays);
         char text[48] = "never (filter skipping off)";
         if (threshold <= 1.0f) std::snprintf(text, sizeof text, "%.3f", threshold);
         ImGui::TextWrapped(

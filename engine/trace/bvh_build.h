@@ -27,7 +27,7 @@ struct BvhReference {
 
 /// Costs in units of one ray-triangle test, per ray reaching a node.
 struct BvhBuildOptions {
-    int bins = 8;                    // per axis; all three axes are binned (the sweep's best)
+    int bins = 4;                    // per axis; all three axes are binned (the sweep's best)
     std::uint32_t max_leaf = 8;      // larger nodes are always split
     float traversal_cost = 1.0f;     // visiting an inner node: its two box tests
     float intersection_cost = 1.0f;  // one ray-triangle test

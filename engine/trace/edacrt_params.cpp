@@ -74,7 +74,7 @@ constexpr ParamInfo choice(std::string_view key, std::string_view label, std::st
             set_field<Member>};
 }
 
-const std::array<ParamInfo, 20> kParams = {
+const std::array<ParamInfo, 21> kParams = {
     integer<&EdacrtParams::bins>(
         "bins", "bins K",
         "K: triangles are binned by centroid into K equal bins along the split axis, giving K-1 "
@@ -145,9 +145,19 @@ const std::array<ParamInfo, 20> kParams = {
         "for the side they head to, as in the order. Needs sampled hit ratios."),
     integer<&EdacrtParams::leaf_rays>(
         "leaf-rays", "leaf rays", "Brute force when a node has at most this many rays.", 1, kCount),
-    integer<&EdacrtParams::leaf_tris>("leaf-tris", "leaf triangles",
-                                      "Brute force when a node has at most this many triangles.", 1,
-                                      kCount),
+    integer<&EdacrtParams::leaf_tris>(
+        "leaf-tris", "leaf triangles",
+        "Brute force when a node has at most this many triangles and at most leaf-tris-rays "
+        "rays reach it (or always, with leaf-tris-rays 0).",
+        1, kCount),
+    integer<&EdacrtParams::leaf_tris_rays>(
+        "leaf-tris-rays", "leaf-tris rays",
+        "Not in the paper: a node of at most leaf-tris triangles is a leaf only when at most "
+        "this many rays reach it; with more, it splits on down to 2 triangles, since each ray "
+        "then costs a leaf N triangle tests where a split costs it two box tests, and the "
+        "split's binning is shared by many rays (the Cornell box's wide walls get thousands of "
+        "rays per node, the bunny's leaves tens). 0: whatever the rays (the paper).",
+        0, kCount),
     integer<&EdacrtParams::cost_leaf_max_tris>(
         "cost-leaf-max-tris", "cost-leaf max tris",
         "Not in the paper: nodes with at most this many triangles become leaves when no split "
@@ -211,6 +221,8 @@ EdacrtParams paper_params() {
     p.second_child = SecondChild::after_first;
     p.presplit = 0.0f;
     p.far_child = FarChild::paper;
+    p.leaf_tris = 4;
+    p.leaf_tris_rays = 0;
     return p;
 }
 
@@ -309,20 +321,26 @@ NodeSampling node_sampling(const EdacrtParams& p, std::size_t rays) {
     return {all, true};
 }
 
-float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles) {
+bool triangle_leaf(const EdacrtParams& p, std::size_t triangles, std::size_t rays) {
+    return triangles <= p.leaf_tris &&
+           (p.leaf_tris_rays == 0 || rays <= p.leaf_tris_rays || triangles <= kAlwaysLeafTris);
+}
+
+float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles,
+                            std::size_t rays) {
     // Never skip when filtering is off, or costs nothing (C_bv = 0).
     if (p.filter_skip == FilterSkip::off || p.cost_filter == 0.0f) return 2.0f;
     // Filtering costs C_bv for every ray; passing a ray unfiltered costs, if it misses the
     // child (1 - alpha of the rays), what the child then spends on it, n_child C_child. Skip
     // when (1 - alpha) n_child C_child < C_bv, i.e. alpha > 1 - C_bv / (n_child C_child).
     // Paper: the child gets all the node's rays, more than leaf_rays, so the count thresholds
-    // make it a leaf exactly when it has at most leaf_tris triangles; a leaf tests each ray
+    // make it a leaf exactly when triangle_leaf() says so; a leaf tests each ray
     // against those, an inner child against its two children's boxes. (A child that ends as
     // a leaf otherwise, unsplittable or by the optional cost leaf, is priced as an inner one.)
     const float n = float(child_triangles);
-    const float wasted = p.filter_skip == FilterSkip::triangles ? n * p.cost_child
-                         : child_triangles <= p.leaf_tris       ? n * p.cost_intersect
-                                                                : 2.0f * p.cost_filter;
+    const float wasted = p.filter_skip == FilterSkip::triangles    ? n * p.cost_child
+                         : triangle_leaf(p, child_triangles, rays) ? n * p.cost_intersect
+                                                                   : 2.0f * p.cost_filter;
     return 1.0f - p.cost_filter / wasted;
 }
 
@@ -357,6 +375,8 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
     if ((key == "small-nodes" || key == "sample-min") && p.sample_threshold <= p.leaf_rays)
         return "no node that samples is small: nodes of at most sample-threshold rays are "
                "leaves (leaf-rays)";
+    if (key == "leaf-tris-rays" && p.leaf_tris <= kAlwaysLeafTris)
+        return "nodes of at most leaf-tris triangles (2 or fewer) are leaves whatever their rays";
     if (key == "far-child" && p.hit_ratio != HitRatio::sampled)
         return "area hit ratios have no sampled rays to drop from the second child's term";
     if (key == "second-child" && threads <= 1)

@@ -100,7 +100,8 @@ struct EdacrtParams {
     SmallNodes small_nodes = SmallNodes::scaled_min;
     std::uint32_t sample_min = 16;  // SmallNodes::scaled_min
     std::uint32_t leaf_rays = 16;
-    std::uint32_t leaf_tris = 4;
+    std::uint32_t leaf_tris = 8;
+    std::uint32_t leaf_tris_rays = 256;    // 0: a leaf at leaf_tris whatever its rays (the paper)
     std::uint32_t cost_leaf_max_tris = 0;  // 0: no leaves by cost (the paper)
     float cost_traversal = 2.0f;           // C_T
     float cost_intersect = 1.0f;           // C_I
@@ -119,7 +120,7 @@ struct EdacrtParams {
 };
 
 /// The paper's choices: the defaults, but every ray sampled in small nodes, the second child
-/// after the first and no pre-split triangles.
+/// after the first, no pre-split triangles, and leaves of 4 triangles whatever their rays.
 EdacrtParams paper_params();
 
 /// DACRT (Afra 2012) on the same recursion: surface-area ratios, direction-sign order, always
@@ -147,9 +148,20 @@ struct NodeSampling {
 /// small_nodes; count 0 when the node takes surface-area ratios instead.
 NodeSampling node_sampling(const EdacrtParams& params, std::size_t rays);
 
+/// Whether a node of `triangles` triangles and `rays` rays is a leaf by its triangle count:
+/// at most leaf_tris triangles reached by at most leaf_tris_rays rays, or at most
+/// kAlwaysLeafTris whatever the rays.
+bool triangle_leaf(const EdacrtParams& params, std::size_t triangles, std::size_t rays);
+
+/// Splitting two triangles costs every ray two box tests to spare it at most one triangle
+/// test, so a node of so few is a leaf however many rays reach it.
+inline constexpr std::uint32_t kAlwaysLeafTris = 2;
+
 /// Section 3.4: the hit ratio above which a child's rays pass to it unfiltered (never, above
-/// 1, with FilterSkip::off); the child holds `child_triangles` triangles.
-float filter_skip_threshold(const EdacrtParams& params, std::uint32_t child_triangles);
+/// 1, with FilterSkip::off); the child holds `child_triangles` triangles and, unfiltered, gets
+/// `rays` rays.
+float filter_skip_threshold(const EdacrtParams& params, std::uint32_t child_triangles,
+                            std::size_t rays);
 
 /// Whether a node of `triangles` triangles becomes a leaf when no split costs less than C_I N
 /// (cost_leaf_max_tris; 0 turns the test off).

@@ -165,7 +165,7 @@ class Recursion {
         if (node.ray_count == 0) return;
         typename Observer::Visit visit = obs_.enter(node);
         Split split;
-        if (node.ray_count <= p_.leaf_rays || node.tri_count <= p_.leaf_tris ||
+        if (node.ray_count <= p_.leaf_rays || triangle_leaf(p_, node.tri_count, node.ray_count) ||
             node.depth >= kMaxDepth || !choose_split(node, split, visit)) {
             leaf(node, visit);
             return;
@@ -196,8 +196,8 @@ class Recursion {
         // second child's filter. Filtering is skipped where it costs more than it saves
         // (Section 3.4).
         const int first_side = split.first, second_side = 1 - split.first;
-        const bool first_skipped = skip_filter(split, first_side);
-        const bool second_skipped = skip_filter(split, second_side);
+        const bool first_skipped = skip_filter(node, split, first_side);
+        const bool second_skipped = skip_filter(node, split, second_side);
         Node first = child(first_side, 0, node.ray_begin, node.ray_count);
         if (!first_skipped) first.ray_count = timed_filter(node, first.box, node.ray_count);
         obs_.child(visit, node, split, first_side, 0, first_skipped, first);
@@ -262,8 +262,9 @@ class Recursion {
         return filter(node.ray_begin, count, box);
     }
 
-    bool skip_filter(const Split& split, int side) const {
-        return split.alpha[side] > filter_skip_threshold(p_, std::uint32_t(split.count[side]));
+    bool skip_filter(const Node& node, const Split& split, int side) const {
+        return split.alpha[side] >
+               filter_skip_threshold(p_, std::uint32_t(split.count[side]), node.ray_count);
     }
 
     /// Binning (Section 3.1, after Wald 2007), the hit ratios (Section 3.2), the cost model and

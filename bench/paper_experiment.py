@@ -423,7 +423,7 @@ def markdown(args, results, figure):
         "Afra 2012 define it: `--method dacrt --presplit 0 --second-child after-first "
         "--leaf-tris 4 --leaf-tris-rays 0`. The paper's own K, leaf thresholds and cost "
         "constants are not in the report the project started from; both sides use ours (K = 8, "
-        "16 rays or 4 triangles per leaf, C_T = 2, C_I = C_bv = 1).",
+        "16 rays or 4 triangles per leaf, C_T = 2, C_I = 1, C_bv = 0.5).",
         "",
         f"![speed-up against samples per pixel](figures/{figure.name})",
         "",

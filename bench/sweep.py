@@ -40,7 +40,7 @@ VARIANTS = {
                "binning=centroids", "small-nodes=scaled", "small-nodes=capped",
                "small-nodes=every-ray", "small-nodes=surface-area", "sample-min=8",
                "sample-min=32", "sample-count=50", "sample-threshold=300", "far-child=unstopped",
-               "cost-leaf-max-tris=64", "filter-skip=triangles", "c-bv=0.5", "c-bv=2"],
+               "cost-leaf-max-tris=64", "filter-skip=triangles", "c-bv=0.25", "c-bv=1"],
     "dacrt": ["second-child=after-first", "presplit=0", "presplit=0.3", "leaf-tris=4",
               "leaf-tris=16", "leaf-tris-rays=0", "leaf-tris-rays=64", "leaf-tris-rays=1024",
               "leaf-rays=8", "leaf-rays=32", "bins=4", "bins=16",

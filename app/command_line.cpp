@@ -18,15 +18,39 @@ std::string shell_quoted(std::string_view word) {
     return out + "'";
 }
 
+/// A scene file's absolute path, so the line runs from any folder; built-in scenes as they are.
+std::string absolute_scene(const std::string& scene) {
+    if (scene.empty() || scene.starts_with("builtin:")) return scene;
+    std::error_code error;
+    const std::filesystem::path path = std::filesystem::absolute(scene, error);
+    return error ? scene : path.lexically_normal().string();
+}
+
 }  // namespace
+
+std::filesystem::path this_executable() {
+    std::error_code error;
+    std::filesystem::path path = std::filesystem::read_symlink("/proc/self/exe", error);
+    return error ? std::filesystem::path() : path;
+}
+
+std::string edacrt_program(const std::filesystem::path& viewer) {
+    if (viewer.empty()) return "edacrt";
+    const std::filesystem::path beside = viewer.parent_path() / "edacrt";
+    std::error_code error;
+    return std::filesystem::is_regular_file(beside, error) && beside.is_absolute()
+               ? beside.lexically_normal().string()
+               : "edacrt";
+}
 
 std::string render_command_line(const ViewCommand& v) {
     const RenderSettings& s = v.settings;
-    std::string line = "edacrt render";
+    const std::string scene = shell_quoted(absolute_scene(v.scene));
+    std::string line = shell_quoted(v.program) + " render";
     if (!v.animated || v.animation.empty())
-        line += (v.animated ? " --animate " : " --scene ") + shell_quoted(v.scene);
+        line += (v.animated ? " --animate " : " --scene ") + scene;
     else
-        line += " --scene " + shell_quoted(v.scene) + " --animate " + shell_quoted(v.animation);
+        line += " --scene " + scene + " --animate " + shell_quoted(v.animation);
     if (v.animated) {
         line += " --time " + exact_text(v.time) + " --update " +
                 std::string(enum_name(kSceneUpdates, v.update));

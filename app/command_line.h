@@ -1,7 +1,10 @@
 #pragma once
 // The `edacrt render` command that reproduces the viewer's view: scene, method, integrator,
 // samples, size, seed, exact camera (floats printed so they read back bit for bit), tone map
-// every EDACRT parameter that differs from its default, and the animation time.
+// every EDACRT parameter that differs from its default, and the animation time. It runs as
+// pasted from any folder: the program and the scene are absolute paths, every word quoted
+// for the shell where needed.
+#include <filesystem>
 #include <string>
 
 #include "render/film.h"
@@ -12,6 +15,7 @@
 namespace edacrt::app {
 
 struct ViewCommand {
+    std::string program = "edacrt";  // edacrt_program(): absolute, or found on PATH
     std::string scene;  // a scene, or an animation that names its own geometry (FILE.json)
     // An animation: its spec (of the scene, or empty when `scene` is the animation), the time
     // shown, how the tracer takes frames, the motion blur shutter (0: none).
@@ -31,7 +35,15 @@ struct ViewCommand {
     std::string out = "out/view.png";
 };
 
-/// One shell line (arguments quoted where needed).
+/// One shell line (arguments quoted where needed; a relative scene path made absolute against
+/// the current folder).
 std::string render_command_line(const ViewCommand& view);
+
+/// The edacrt program beside `viewer` (the build and the install put both in one folder), as
+/// an absolute path; "edacrt", to be found on PATH, when there is none.
+std::string edacrt_program(const std::filesystem::path& viewer);
+
+/// This process's executable (/proc/self/exe); empty where that cannot be read.
+std::filesystem::path this_executable();
 
 }  // namespace edacrt::app

@@ -109,6 +109,14 @@ int run_viewer(const ViewerOptions& options) {
         for (int i = 0; i < count; ++i) state->pending_loads.emplace_back(paths[i]);
     });
 
+    // Before ImGui's backend installs its own, which then calls this one: shortcuts are read
+    // from these events (KeyPresses), not from the key state sampled once per frame.
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+        if (action == GLFW_RELEASE) return;
+        static_cast<ViewerState*>(glfwGetWindowUserPointer(w))
+            ->keys.press(key, mods, action == GLFW_REPEAT);
+    });
+
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // the same layout every start (and in tests)

@@ -69,18 +69,19 @@ ImageOutput save_settings(const ViewerState& s) {
 }
 
 /// Keys (while no text field has the keyboard): Tab or F1 hide the panels, H or ? the help, F12
-/// saves the image, Esc quits, R resets the view, WASD/QE fly. ImGui 1.86 indexes keys by the
-/// backend's (GLFW's) key codes.
+/// saves the image, Esc quits, R resets the view, WASD/QE fly. Shortcuts are the window's key
+/// events since the last frame (s.keys), so a tap within one slow frame still counts; flying
+/// reads whether a key is held. ImGui 1.86 indexes keys by GLFW's key codes.
 void handle_keys(ViewerState& s, float dt, bool& quit) {
     const ImGuiIO& io = ImGui::GetIO();
+    const KeyPresses& keys = s.keys;
     if (io.WantTextInput) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) quit = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) s.save_requested = ViewerState::Save::shown;
+    if (keys.pressed(GLFW_KEY_ESCAPE)) quit = true;
+    if (keys.pressed(GLFW_KEY_F12)) s.save_requested = ViewerState::Save::shown;
     if (io.WantCaptureKeyboard) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false) || ImGui::IsKeyPressed(GLFW_KEY_F1, false))
+    if ((keys.count(GLFW_KEY_TAB) + keys.count(GLFW_KEY_F1)) % 2)
         s.panels_hidden = !s.panels_hidden;
-    if (ImGui::IsKeyPressed(GLFW_KEY_H, false) ||
-        (ImGui::IsKeyPressed(GLFW_KEY_SLASH, false) && io.KeyShift))
+    if ((keys.count(GLFW_KEY_H) + keys.count(GLFW_KEY_SLASH, GLFW_MOD_SHIFT)) % 2)
         s.show_help = !s.show_help;
     const auto key = [&](int k) { return ImGui::IsKeyDown(k) ? 1.0f : 0.0f; };
     const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
@@ -88,11 +89,11 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
     if (forward != 0 || right != 0 || up != 0)
         change_camera(s, [&] { s.camera.fly(forward, right, up, dt); });
-    if (ImGui::IsKeyPressed(GLFW_KEY_R)) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
-    if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s
-        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) toggle_play(s);
-        if (ImGui::IsKeyPressed(GLFW_KEY_LEFT)) seek(s, s.playback.time - 1.0 / 24);
-        if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT)) seek(s, s.playback.time + 1.0 / 24);
+    if (keys.pressed(GLFW_KEY_R)) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
+    if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s each
+        if (keys.count(GLFW_KEY_SPACE) % 2) toggle_play(s);
+        const int steps = keys.count(GLFW_KEY_RIGHT, 0, true) - keys.count(GLFW_KEY_LEFT, 0, true);
+        if (steps != 0) seek(s, s.playback.time + steps / 24.0);
     }
 }
 
@@ -197,6 +198,7 @@ class Viewer {
             });
         }
         handle_keys(s_, dt_, quit_);
+        s_.keys.clear();
     }
 
     /// Panels: ImGui's widgets, which show the state and take its edits.
@@ -234,10 +236,11 @@ class Viewer {
             s_.render_answered = false;
         }
         const RenderRequest& r = s_.submitted;
-        s_.command_line = render_command_line({s_.scene_path, bool(r.animation), s_.animation_spec,
-                                               r.time, r.update, r.shutter, r.method, r.embree_mode,
-                                               r.params, r.settings, r.camera, r.spp_target,
-                                               s_.exposure, s_.tone_map, timestamped(s_, ".png")});
+        static const std::string program = edacrt_program(this_executable());
+        s_.command_line = render_command_line(
+            {program, s_.scene_path, bool(r.animation), s_.animation_spec, r.time, r.update,
+             r.shutter, r.method, r.embree_mode, r.params, r.settings, r.camera, r.spp_target,
+             s_.exposure, s_.tone_map, timestamped(s_, ".png")});
     }
 
     /// Jobs: the comparison and the recording, run off the UI thread, started and collected.

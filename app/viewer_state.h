@@ -9,6 +9,7 @@
 #include "bookmarks.h"
 #include "frame_pool.h"
 #include "heatmap.h"
+#include "key_presses.h"
 #include "layout.h"
 #include "orbit_camera.h"
 #include "render/film.h"
@@ -167,6 +168,7 @@ struct ViewerState {
     bool panels_hidden = false;  // Tab / F1
     bool analysis_open = true;
     bool show_help = false;                // H / ?
+    KeyPresses keys;                       // since the frame began (the window's key events)
     std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
     std::vector<PanelPlacement> placements;
     std::vector<std::string> layout_problems;  // of the last frame (the script's check-layout)

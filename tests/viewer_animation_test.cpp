@@ -337,7 +337,9 @@ TEST(CommandLine, AnAnimatedViewNamesItsAnimationTimeAndShutter) {
     v.animation.clear();
     v.shutter = 0.0;
     const std::string file = render_command_line(v);
-    EXPECT_NE(file.find("edacrt render --animate assets/animations/spot-and-teapot.anim.json"),
+    EXPECT_NE(file.find("edacrt render --animate " + (std::filesystem::current_path() /
+                                                      "assets/animations/spot-and-teapot.anim.json")
+                                                         .string()),
               std::string::npos)
         << file;
     EXPECT_EQ(file.find("--scene"), std::string::npos);

@@ -3,13 +3,17 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 
 #include "bookmarks.h"
 #include "command_line.h"
+#include "key_presses.h"
 #include "layout.h"
+#include "panels/columns.h"
 #include "scene/builtin_scenes.h"
 #include "script_runner.h"
 #include "util/error.h"
@@ -130,6 +134,91 @@ TEST(CommandLine, CarriesTheExactCameraAndTheChangedParameters) {
         EXPECT_NE(line.find(part), std::string::npos) << part << " in " << line;
     // Only parameters that differ from their defaults.
     EXPECT_EQ(line.find("--leaf-rays"), std::string::npos) << line;
+}
+
+TEST(CommandLine, NamesTheProgramAndTheSceneByAbsolutePaths) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("edacrt_program_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    // Beside the viewer, the build's edacrt; with none there, the one on PATH.
+    EXPECT_EQ(edacrt_program(dir / "edacrt_viewer"), "edacrt");
+    std::ofstream(dir / "edacrt") << "";
+    EXPECT_EQ(edacrt_program(dir / "edacrt_viewer"), (dir / "edacrt").string());
+    EXPECT_EQ(edacrt_program({}), "edacrt");
+    ViewCommand v;
+    v.program = (dir / "my tools" / "edacrt").string();
+    v.scene = "scenes/../scenes/a b.obj";
+    const std::string line = render_command_line(v);
+    EXPECT_EQ(
+        line.rfind("'" + v.program + "' render --scene '" +
+                       (std::filesystem::current_path() / "scenes" / "a b.obj").string() + "' ",
+                   0),
+        0u)
+        << line;
+    v.scene = "builtin:sphere:subdiv=2";
+    EXPECT_NE(render_command_line(v).find(" --scene builtin:sphere:subdiv=2 "), std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CommandLine, RunsAsPastedFromAnotherFolder) {
+    const std::string program = edacrt_program(this_executable());
+    if (program == "edacrt") GTEST_SKIP() << "no edacrt beside " << this_executable();
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("edacrt_pasted_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "one triangle.obj") << "v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n";
+    ViewCommand v;
+    v.program = program;
+    // Relative to this process's folder, as the viewer's path field may hold it.
+    v.scene = std::filesystem::relative(dir / "one triangle.obj").string();
+    v.settings.width = 8;
+    v.settings.height = 6;
+    v.camera = {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60.0f};
+    v.out = (dir / "view.png").string();
+    const int status = std::system(("cd / && " + render_command_line(v) + " -q").c_str());
+    EXPECT_EQ(status, 0) << render_command_line(v);
+    EXPECT_TRUE(std::filesystem::exists(dir / "view.png"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(AnalysisTables, EveryColumnExplainsItself) {
+    EXPECT_EQ(all_table_columns().size(), 6u);
+    for (std::span<const Column> table : all_table_columns()) {
+        ASSERT_FALSE(table.empty());
+        std::set<std::string> names;
+        for (const Column& c : table) {
+            SCOPED_TRACE(c.name);
+            EXPECT_TRUE(names.insert(c.name).second) << "a column named twice";
+            const std::string help = c.help;
+            // A sentence of its own, longer than the header it explains.
+            EXPECT_GT(help.size(), std::string(c.name).size() + 8);
+            EXPECT_EQ(help.back(), '.');
+        }
+    }
+    EXPECT_EQ(level_columns().size(), 17u);  // the Statistics table draws 17 cells per row
+}
+
+TEST(KeyPresses, ATapWithinOneFrameCountsOnce) {
+    constexpr int kH = 72, kSlash = 47, kRight = 262, kShift = 1;  // GLFW's codes
+    KeyPresses keys;
+    // Press and release both came before the frame read them: the press is kept.
+    keys.press(kH, 0, false);
+    EXPECT_TRUE(keys.pressed(kH));
+    EXPECT_FALSE(keys.pressed(kSlash));
+    keys.press(kSlash, kShift, false);  // '?'
+    EXPECT_TRUE(keys.pressed(kSlash, kShift));
+    EXPECT_TRUE(keys.pressed(kSlash));
+    // Auto-repeats count only where asked for (stepping), not as toggles.
+    keys.press(kRight, 0, false);
+    keys.press(kRight, 0, true);
+    keys.press(kRight, 0, true);
+    EXPECT_EQ(keys.count(kRight), 1);
+    EXPECT_EQ(keys.count(kRight, 0, true), 3);
+    keys.clear();
+    EXPECT_FALSE(keys.pressed(kH));
+    EXPECT_EQ(keys.count(kRight, 0, true), 0);
+    keys.press(kSlash, 0, false);  // '/' without Shift is not '?'
+    EXPECT_FALSE(keys.pressed(kSlash, kShift));
 }
 
 TEST(Analysis, StaleOnceTheViewSceneSizeSeedMethodOrParametersChange) {

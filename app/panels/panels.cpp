@@ -59,6 +59,17 @@ void cell_text(const char* format, ...) {
     ImGui::TextUnformatted(text);
 }
 
+void table_headers(std::span<const Column> columns, int frozen_columns) {
+    for (const Column& c : columns) ImGui::TableSetupColumn(c.name);
+    ImGui::TableSetupScrollFreeze(frozen_columns, 1);
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+    for (const Column& c : columns) {
+        ImGui::TableNextColumn();
+        ImGui::TableHeader(c.name);
+        wrapped_tooltip(c.help);
+    }
+}
+
 void wrapped_tooltip(const std::string& text) {
     if (!ImGui::IsItemHovered()) return;
     ImGui::BeginTooltip();
@@ -108,6 +119,12 @@ void draw_controls(ViewerState& s) {
             draw_params_tab(s);
             ImGui::EndTabItem();
         }
+        // Where help is: the keys and the mouse are otherwise only in the overlay itself.
+        if (ImGui::TabItemButton("? help", ImGuiTabItemFlags_Trailing)) s.show_help = !s.show_help;
+        wrapped_tooltip(
+            "Mouse and keys (H or ?); hover any control or column header for what "
+            "it means");
+        report_item(s, "Controls/help");
         ImGui::EndTabBar();
     }
     place(s, "Controls");

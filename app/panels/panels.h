@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "columns.h"
 #include "settings_table.h"
 #include "util/enum_table.h"
 #include "viewer_state.h"
@@ -79,6 +80,10 @@ void error_text(ViewerState& state, const char* name, const std::string& text);
 /// Reports where the last item was drawn, as `name` ("Tab/widget"), for the script's
 /// `layout FILE`.
 void report_item(ViewerState& state, std::string name);
+
+/// Sets up `columns` in the current table, freezes the header row (and `frozen_columns`), and
+/// draws the headers, each with its tooltip.
+void table_headers(std::span<const Column> columns, int frozen_columns = 0);
 
 /// A table cell's text; counts cells too narrow for it (the layout check reports them).
 void cell_text(const char* format, ...) IM_FMTARGS(1);

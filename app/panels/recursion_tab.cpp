@@ -40,13 +40,12 @@ void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams
     s.hovered_candidate = -1;
     const float height = float(node.candidates.size() + 1) * ImGui::GetTextLineHeightWithSpacing() +
                          2.0f * ImGui::GetStyle().CellPadding.y * float(node.candidates.size() + 1);
-    if (!ImGui::BeginTable("candidates", 6,
+    if (!ImGui::BeginTable("candidates", int(candidate_columns().size()),
                            ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                            ImVec2(0, height + 4.0f)))
         return;
-    for (const char* h : {"j", "N_L", "N_R", "a_L", "a_R", "cost"}) ImGui::TableSetupColumn(h);
-    ImGui::TableHeadersRow();
+    table_headers(candidate_columns());
     for (std::size_t j = 0; j < node.candidates.size(); ++j) {
         const CandidateSplit& c = node.candidates[j];
         ImGui::TableNextRow();
@@ -173,16 +172,11 @@ void draw_recursion_tab(ViewerState& s) {
 
     // The level's nodes: boxes over the image, and a list to pick one from.
     std::size_t shown = 0;
-    if (ImGui::BeginTable("nodes", 7,
+    if (ImGui::BeginTable("nodes", int(node_columns().size()),
                           ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, 130))) {
-        // alpha: its source and sample count; error: the larger |estimated - true| of the two
-        // chosen children.
-        for (const char* h : {"node", "rays", "tris", "kind", "filter", "alpha", "error"})
-            ImGui::TableSetupColumn(h);
-        ImGui::TableSetupScrollFreeze(0, 1);
-        ImGui::TableHeadersRow();
+        table_headers(node_columns());
         for (std::size_t i = 0; i < nodes.size(); ++i) {
             const NodeRecord& n = nodes[i];
             if (n.depth != s.explorer_level) continue;

@@ -50,12 +50,9 @@ void alpha_errors(const std::vector<LevelStats>& levels) {
     const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_ScrollY | ImGuiTableFlags_SizingFixedFit;
     const float rows = float(levels.size() + 2) * ImGui::GetTextLineHeightWithSpacing();
-    if (ImGui::BeginTable("alpha errors", 9, flags, ImVec2(0, std::min(rows, 160.0f)))) {
-        for (const char* h :
-             {"level", "sampled", "area", "every ray", "samples/node", "mean", "p50", "p90", "max"})
-            ImGui::TableSetupColumn(h);
-        ImGui::TableSetupScrollFreeze(1, 1);
-        ImGui::TableHeadersRow();
+    if (ImGui::BeginTable("alpha errors", int(alpha_error_columns().size()), flags,
+                          ImVec2(0, std::min(rows, 160.0f)))) {
+        table_headers(alpha_error_columns(), 1);
         for (std::size_t i = 0; i < levels.size(); ++i) {
             const LevelStats& l = levels[i];
             if (l.alpha_children == 0) continue;
@@ -120,11 +117,9 @@ void draw_comparison(ViewerState& s) {
     const ImGuiTableFlags flags =
         ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
     const float height = float(s.comparison.size() + 2) * ImGui::GetFrameHeightWithSpacing();
-    if (!ImGui::BeginTable("compare", 8, flags, ImVec2(0, height))) return;
-    for (const char* h : {"method", "update", "update ms", "ms", "Mrays/s", "/ embree",
-                          "box tests/ray", "tri tests/ray"})
-        ImGui::TableSetupColumn(h);
-    ImGui::TableHeadersRow();
+    if (!ImGui::BeginTable("compare", int(comparison_columns().size()), flags, ImVec2(0, height)))
+        return;
+    table_headers(comparison_columns());
     for (const MethodTotals& m : s.comparison) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
@@ -186,26 +181,10 @@ void draw_stats_tab(ViewerState& s) {
         const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
                                       ImGuiTableFlags_SizingFixedFit;
-        // Order: of the rays that hit both children's boxes and found their hit below, the
-        // share whose hit was in the child visited first. alpha: estimated / true hit ratio.
-        const char* headers[] = {"level",      "nodes",     "leaves",    "rays in", "rays down",
-                                 "filtered",   "skipped",   "2nd split", "tris",    "sample box",
-                                 "filter box", "tri tests", "order 1st", "culled",  "alpha est",
-                                 "alpha true", "ms"};
         const float rows = float(levels.size() + 3) * ImGui::GetTextLineHeightWithSpacing();
-        if (ImGui::BeginTable("levels", 17, flags, ImVec2(0, std::min(rows, 220.0f)))) {
-            for (const char* h : headers) ImGui::TableSetupColumn(h);
-            ImGui::TableSetupScrollFreeze(1, 1);
-            ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
-            for (const char* h : headers) {
-                ImGui::TableNextColumn();
-                ImGui::TableHeader(h);
-                if (h == headers[7])
-                    wrapped_tooltip(
-                        "nodes whose second child got its rays in two parts (second-child "
-                        "split): at once, the rays that missed the first child's box; after "
-                        "it, the rest. Each is one more child ray set (filtered or skipped)");
-            }
+        if (ImGui::BeginTable("levels", int(level_columns().size()), flags,
+                              ImVec2(0, std::min(rows, 220.0f)))) {
+            table_headers(level_columns(), 1);
             const auto count = [](std::uint64_t v) {
                 ImGui::TableNextColumn();
                 cell_text("%llu", static_cast<unsigned long long>(v));

@@ -47,17 +47,13 @@ void draw_traversal_tab(ViewerState& s) {
         }
     int order_misses = 0;
     const SlabRay slab = make_slab_ray(a->ray);
-    if (ImGui::BeginTable("visits", 9,
+    if (ImGui::BeginTable("visits", int(visit_columns().size()),
                           ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
                               ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
                           ImVec2(0, std::max(ImGui::GetContentRegionAvail().y -
                                                  ImGui::GetTextLineHeightWithSpacing() - 4.0f,
                                              120.0f)))) {
-        for (const char* h : {"depth", "node", "rays in/out", "tris", "true a_L/a_R", "first",
-                              "order", "left", "right"})
-            ImGui::TableSetupColumn(h);
-        ImGui::TableSetupScrollFreeze(0, 1);
-        ImGui::TableHeadersRow();
+        table_headers(visit_columns());
         for (const RayVisit& v : visits) {
             if (v.node < 0) continue;
             const NodeRecord& n = nodes[std::size_t(v.node)];

@@ -169,13 +169,16 @@ class Viewer {
             return p.x >= image.x && p.y >= image.y && p.x < image.right() && p.y < image.bottom();
         };
         // The traversal debugger's pixel: a click on the image while picking, or the script.
+        // Picking stays on, pixel after pixel; a drag still orbits (a click is a release that
+        // did not drag).
         std::optional<ImVec2> pick;
         if (const auto p = script_ ? script_->take_pick() : std::nullopt) pick = ImVec2(p->x, p->y);
         if (s_.picking && !io.WantCaptureMouse && in_image(io.MousePos) &&
-            ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+            in_image(io.MouseClickedPos[ImGuiMouseButton_Left]) &&
+            ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+            io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] <
+                io.MouseDragThreshold * io.MouseDragThreshold)
             pick = io.MousePos;
-            s_.picking = false;
-        }
         const RenderSettings& rendered = s_.submitted.settings;
         if (pick && rendered.width > 0 && in_image(*pick)) {
             const int x = std::clamp(int((pick->x - image.x) / image.w * float(rendered.width)), 0,

@@ -192,7 +192,7 @@ struct ViewerState {
     bool analysis_running = false;
     bool analysis_requested = false;
     std::int64_t follow_pixel = -1;  // the debugger's pixel, for the next analysis
-    bool picking = false;            // the next click on the image picks the debugger's pixel
+    bool picking = false;            // clicks on the image pick the debugger's pixel
     int explorer_level = 0;
     std::int32_t explorer_node = -1;  // selected node (its candidate splits are shown)
     std::int32_t hovered_candidate = -1;

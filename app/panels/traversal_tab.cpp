@@ -12,7 +12,7 @@
 namespace edacrt::app {
 
 void draw_traversal_tab(ViewerState& s) {
-    ImGui::Checkbox("pick a pixel (click the image)", &s.picking);
+    ImGui::Checkbox("pick pixels (click the image; stays on, drags still orbit)", &s.picking);
     const Analysis* a = s.analysis.get();
     if (!a || a->pixel < 0 || !a->detail) {
         ImGui::TextDisabled(s.analysis_running ? "tracing..." : "no pixel followed yet");

@@ -239,9 +239,8 @@ class Viewer {
             s_.render_answered = false;
         }
         const RenderRequest& r = s_.submitted;
-        static const std::string program = edacrt_program(this_executable());
         s_.command_line = render_command_line(
-            {program, s_.scene_path, bool(r.animation), s_.animation_spec, r.time, r.update,
+            {program_, s_.scene_path, bool(r.animation), s_.animation_spec, r.time, r.update,
              r.shutter, r.method, r.embree_mode, r.params, r.settings, r.camera, r.spp_target,
              s_.exposure, s_.tone_map, timestamped(s_, ".png")});
     }
@@ -439,7 +438,9 @@ class Viewer {
     } clock_;
     float dt_ = 0.0f;
     bool quit_ = false;
-    // submit: the request in force, and the framebuffer and image region it was made for.
+    // submit: the request in force, and the framebuffer and image region it was made for; the
+    // edacrt its command line names.
+    const std::string program_ = edacrt_program(this_executable());
     std::uint64_t request_id_ = 0;
     struct {
         int width = 0, height = 0;

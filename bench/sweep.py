@@ -96,7 +96,9 @@ def confirm(args, rows):
         if not better:
             continue
         path = args.out / f"confirm-{scene}-{set_}-{threads}t-{method}.json"
-        if not (args.resume and path.exists()):
+        # A stored run is kept (--resume) only if it timed these variants.
+        stored = json.loads(path.read_text())["results"] if path.exists() else []
+        if not (args.resume and {r["method"] for r in stored} == {method, *better}):
             print(f"sweep: confirming {', '.join(better)} on {scene} {set_}, "
                   f"{threads} thread(s)", file=sys.stderr, flush=True)
             run([args.build / "edacrt", "bench", "--scene", scene, "--scenes", args.scenes,

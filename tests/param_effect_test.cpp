@@ -59,10 +59,23 @@ TEST(ParamNoEffect, EachParameterUnderTheSwitchesThatDecideIt) {
               (Keys{"c-t", "c-child", "far-child"}));
     EXPECT_EQ(inert(with([](auto& p) { p.order = TraversalOrder::left_first; }), 4),
               (Keys{"c-t", "c-child"}));
-    // The cost leaf takes C_T and C_I, if it reaches above the count leaf.
+    // The cost leaf takes C_T and C_I, if it reaches above the nodes that are leaves whatever
+    // their rays: with leaf-tris rays, nodes of 3..leaf_tris triangles that many rays reach
+    // choose a split, and the cost leaf is tested there.
     EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = 64; }), 4), (Keys{"c-child"}));
     EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = p.leaf_tris; }), 4),
+              (Keys{"c-child"}));
+    EXPECT_EQ(inert(with([](auto& p) { p.cost_leaf_max_tris = kAlwaysLeafTris; }), 4),
               (Keys{"c-t", "c-child"}));
+    EXPECT_EQ(inert(with([](auto& p) {
+                        p.cost_leaf_max_tris = p.leaf_tris;
+                        p.leaf_tris_rays = 0;
+                    }),
+                    4),
+              (Keys{"c-t", "c-child"}));
+    // Leaves of at most 2 triangles are leaves whatever their rays.
+    EXPECT_EQ(inert(with([](auto& p) { p.leaf_tris = kAlwaysLeafTris; }), 4),
+              (Keys{"c-t", "c-child", "leaf-tris-rays"}));
     // filter-skip=triangles prices by C_child, not C_I.
     EXPECT_EQ(inert(with([](auto& p) { p.filter_skip = FilterSkip::triangles; }), 4),
               (Keys{"c-t", "c-i"}));
@@ -170,6 +183,8 @@ TEST(ParamNoEffect, AnInertParameterChangesNoHitAndNoCounter) {
         paper_params(),
         dacrt_params(),
         with([](auto& p) { p.cost_leaf_max_tris = 16; }),
+        with([](auto& p) { p.cost_leaf_max_tris = kAlwaysLeafTris; }),
+        with([](auto& p) { p.leaf_tris = kAlwaysLeafTris; }),
         with([](auto& p) { p.filter_skip = FilterSkip::triangles; }),
         with([](auto& p) { p.cost_filter = 0.0f; }),
         with([](auto& p) { p.sample_threshold = 16; }),

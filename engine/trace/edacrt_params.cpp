@@ -321,9 +321,13 @@ NodeSampling node_sampling(const EdacrtParams& p, std::size_t rays) {
     return {all, true};
 }
 
+std::uint32_t always_leaf_tris(const EdacrtParams& p) {
+    return p.leaf_tris_rays == 0 ? p.leaf_tris : std::min(p.leaf_tris, kAlwaysLeafTris);
+}
+
 bool triangle_leaf(const EdacrtParams& p, std::size_t triangles, std::size_t rays) {
-    return triangles <= p.leaf_tris &&
-           (p.leaf_tris_rays == 0 || rays <= p.leaf_tris_rays || triangles <= kAlwaysLeafTris);
+    return triangles <= always_leaf_tris(p) ||
+           (triangles <= p.leaf_tris && rays <= p.leaf_tris_rays);
 }
 
 float filter_skip_threshold(const EdacrtParams& p, std::uint32_t child_triangles,
@@ -352,7 +356,7 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
                                                        int threads) {
     const std::string_view key = info.key;
     // Nodes sample rays only for a sampled hit ratio or order, and only nodes of more than
-    // leaf_rays rays and leaf_tris triangles choose a split at all.
+    // leaf_rays rays and always_leaf_tris() triangles choose a split at all.
     const bool sampling = p.hit_ratio == HitRatio::sampled || p.order == TraversalOrder::sampled;
     const std::uint64_t fewest_sampled = std::uint64_t(p.leaf_rays) + 1;
     // Small nodes that draw sample_count rays whatever their size, as large ones do.
@@ -360,7 +364,9 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
         (p.small_nodes == SmallNodes::capped && p.sample_count < fewest_sampled) ||
         (p.small_nodes == SmallNodes::scaled &&
          std::uint64_t(p.sample_count) * kScaledSampleShare <= fewest_sampled);
-    const bool cost_leaf = p.cost_leaf_max_tris > p.leaf_tris;
+    // The cost leaf is tested in nodes that choose a split: with leaf_tris_rays, those of
+    // 3..leaf_tris triangles that many rays reach too.
+    const bool cost_leaf = p.cost_leaf_max_tris > always_leaf_tris(p);
     const bool free_filter = p.cost_filter == 0.0f;
 
     if ((key == "sample-threshold" || key == "sample-count" || key == "small-nodes" ||
@@ -386,10 +392,12 @@ std::optional<std::string_view> param_no_effect_reason(const EdacrtParams& p, co
     // split is the one of fewest expected tests; the costs decide only against a leaf.
     if (key == "c-t" && !cost_leaf)
         return "C_T is the same for every candidate split, so it only decides against a leaf "
-               "(cost C_I N): set cost-leaf max tris above leaf triangles";
+               "(cost C_I N): set cost-leaf max tris above the triangles of a node that is a "
+               "leaf whatever its rays (leaf triangles, or 2 with leaf-tris rays)";
     if (key == "c-i" && !cost_leaf && (p.filter_skip != FilterSkip::paper || free_filter))
         return "C_I prices every candidate split alike, so it only decides against a leaf "
-               "(cost-leaf max tris above leaf triangles) and in filter-skip=paper's threshold "
+               "(cost-leaf max tris above the triangles of a node that is a leaf whatever its "
+               "rays) and in filter-skip=paper's threshold "
                "for a leaf child";
     if (key == "c-bv" && p.filter_skip == FilterSkip::off)
         return "filter skipping is off: every child's rays are filtered";

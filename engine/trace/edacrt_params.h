@@ -150,14 +150,17 @@ struct NodeSampling {
 /// small_nodes; count 0 when the node takes surface-area ratios instead.
 NodeSampling node_sampling(const EdacrtParams& params, std::size_t rays);
 
-/// Whether a node of `triangles` triangles and `rays` rays is a leaf by its triangle count:
-/// at most leaf_tris triangles reached by at most leaf_tris_rays rays, or at most
-/// kAlwaysLeafTris whatever the rays.
-bool triangle_leaf(const EdacrtParams& params, std::size_t triangles, std::size_t rays);
-
 /// Splitting two triangles costs every ray two box tests to spare it at most one triangle
 /// test, so a node of so few is a leaf however many rays reach it.
 inline constexpr std::uint32_t kAlwaysLeafTris = 2;
+
+/// The most triangles a node can hold and be a leaf however many rays reach it: leaf_tris
+/// with leaf_tris_rays 0 (the paper), else at most kAlwaysLeafTris.
+std::uint32_t always_leaf_tris(const EdacrtParams& params);
+
+/// Whether a node of `triangles` triangles and `rays` rays is a leaf by its triangle count:
+/// at most always_leaf_tris(), or at most leaf_tris reached by at most leaf_tris_rays rays.
+bool triangle_leaf(const EdacrtParams& params, std::size_t triangles, std::size_t rays);
 
 /// Section 3.4: the hit ratio above which a child's rays pass to it unfiltered (never, above
 /// 1, with FilterSkip::off); the child holds `child_triangles` triangles and, unfiltered, gets

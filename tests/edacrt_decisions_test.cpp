@@ -528,14 +528,37 @@ TEST(EdacrtPresplit, OnlyTrianglesMuchLargerThanTheMeanAreCut) {
         const float x = float(i % 10), y = float(i / 10);
         alike.push_back({{x, y, 0}, {x + 1, y, 0}, {x, y + 1 + 0.01f * float(i % 7), 0.5f}});
     }
-    EXPECT_TRUE(plan_presplit(alike, 0.3f).first.empty());  // no triangle cut
-    EXPECT_TRUE(plan_presplit(alike, 8.0f).first.empty());
+    const auto plan = [](const std::vector<Triangle>& triangles, float extra) {
+        std::vector<float> areas;
+        Aabb grid;
+        for (const Triangle& tri : triangles) {
+            areas.push_back(box_area(corners_bounds(tri)));
+            grid.extend(corners_bounds(tri));
+        }
+        return plan_presplit(areas, extra, grid);
+    };
+    EXPECT_TRUE(plan(alike, 0.3f).cut.empty());  // no triangle cut
+    EXPECT_TRUE(plan(alike, 8.0f).cut.empty());
     std::vector<Triangle> one_large = alike;
     one_large.push_back({{0, 0, -1}, {40, 0, -1}, {0, 40, 5}});
-    const PresplitPlan plan = plan_presplit(one_large, 0.3f);
-    ASSERT_EQ(plan.first.size(), one_large.size() + 1);
-    EXPECT_EQ(plan.first.back(), one_large.size() + 30);  // the budget, all to the large one
-    for (std::size_t i = 0; i < alike.size(); ++i) EXPECT_EQ(plan.first[i + 1], i + 1);
+    const PresplitPlan large = plan(one_large, 0.3f);
+    ASSERT_EQ(large.cut, std::vector<std::uint32_t>{std::uint32_t(alike.size())});
+    EXPECT_EQ(large.pieces, std::vector<std::uint32_t>{31u});  // the budget, all to the large one
+    EXPECT_EQ(large.grid.lo, glm::vec3(0, 0, -1));
+}
+
+// A box whose area overflows, or is NaN, counts as no area: it is never cut, and it does not
+// make every other box look small.
+TEST(EdacrtPresplit, AreasThatOverflowAreNotCut) {
+    const Triangle huge{{-3e38f, -3e38f, 0}, {3e38f, -3e38f, 0}, {0, 3e38f, 1}};
+    EXPECT_EQ(box_area(corners_bounds(huge)), 0.0f);
+    std::vector<float> areas(100, 1.0f);
+    areas.push_back(box_area(corners_bounds(huge)));
+    areas.push_back(50.0f);
+    const PresplitPlan plan = plan_presplit(areas, 0.2f, Aabb{glm::vec3(0), glm::vec3(1)});
+    ASSERT_EQ(plan.cut, std::vector<std::uint32_t>{101u});
+    // An extra piece per twice the mean area (150 / 102): 17, within the budget of 20.
+    EXPECT_EQ(plan.pieces, std::vector<std::uint32_t>{18u});
 }
 
 // Every point of a cut triangle lies in one of its pieces' boxes, each box lies in the whole

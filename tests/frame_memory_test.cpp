@@ -1,8 +1,10 @@
-// FrameVector: per-frame arrays on huge pages when large, default-initialised on resize.
+// FrameVector: per-frame arrays on huge pages when large, kept for the next frame when freed,
+// default-initialised on resize.
 #include "util/frame_memory.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <new>
 
@@ -28,6 +30,29 @@ TEST(FrameMemory, TypesWithConstructorsAreStillConstructed) {
     for (const Aabb& box : boxes) EXPECT_TRUE(box.lo.x > box.hi.x);
     FrameVector<Aabb> filled(2, Aabb{glm::vec3(1.0f), glm::vec3(2.0f)});
     EXPECT_EQ(filled[1].hi.y, 2.0f);
+}
+
+// A large block stays mapped when freed and serves the next allocation of about its size (the
+// next frame's array), not a much smaller one; what it held may still be there, and every byte
+// can be written again.
+TEST(FrameMemory, AFreedLargeBlockServesTheNextFrame) {
+    constexpr std::size_t kBytes = std::size_t(16) << 20;
+    auto* first = static_cast<unsigned char*>(allocate_frame_memory(kBytes, 64));
+    std::fill_n(first, kBytes, 1);
+    free_frame_memory(first);
+    auto* again = static_cast<unsigned char*>(allocate_frame_memory(kBytes - 4096, 64));
+    EXPECT_EQ(again, first);
+    std::fill_n(again, kBytes - 4096, 2);
+    auto* other = static_cast<unsigned char*>(allocate_frame_memory(kBytes, 64));
+    EXPECT_NE(other, again);  // again is in use
+    free_frame_memory(again);
+    constexpr std::size_t kSmall = std::size_t(5) << 20;  // large too, but under half
+    auto* small = static_cast<unsigned char*>(allocate_frame_memory(kSmall, 64));
+    EXPECT_NE(small, again);  // would waste more than half of it
+    std::fill_n(small, kSmall, 3);
+    free_frame_memory(small);
+    free_frame_memory(other);
+    free_frame_memory(nullptr);
 }
 
 TEST(FrameMemory, AnImpossibleSizeIsBadAlloc) {

@@ -36,63 +36,95 @@ UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
 
 void EdacrtTracer::prepare_triangles() {
     // Per frame (update_scene() of an animation): in parallel, into the storage of the last
-    // frame. Each triangle, or with params_.presplit its pieces (presplit.h): a piece is binned
-    // by its clipped box's centre and intersects as its whole triangle (read through prims, not
+    // frame. First each triangle's reference, after room for the pieces; then, with
+    // params_.presplit, the triangles the plan cuts (presplit.h) give way to their pieces, placed
+    // before the triangles: the large triangles are the likeliest occluders, and a leaf tests its
+    // references in this order, so an any-hit ray meets them first. A piece is binned by its
+    // clipped box's centre and intersects as its whole triangle (read through prims, not
     // copied: a copy per reference was a third of this pass's writes).
-    const PresplitPlan plan = params_.presplit != 0.0f && !triangles_.empty()
-                                  ? plan_presplit(triangles_, params_.presplit)
-                                  : PresplitPlan{};
-    const bool pieces = !plan.first.empty();  // empty: no triangle is cut
-    const std::size_t n = pieces ? plan.first.back() : triangles_.size();
+    const std::size_t count = triangles_.size();
+    const bool presplit = params_.presplit != 0.0f;
+    // Room for every piece a plan can make: at most presplit * count extra, on at most as many
+    // triangles.
+    const std::size_t front = presplit ? 2 * std::size_t(params_.presplit * float(count)) : 0;
+    scene_.bounds.resize(front + count);
+    scene_.centroids.resize(front + count);
+    scene_.prims.resize(front + count);
+    areas_.resize(presplit ? count : 0);
     scene_.triangles = triangles_.data();
-    scene_.bounds.resize(n);
-    scene_.centroids.resize(n);
-    scene_.prims.resize(n);
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
     struct Sums {
         Aabb box;
+        Aabb corners;          // without conservative_bounds' padding: the pre-split's grid
         std::size_t made = 0;  // references written
     };
-    const Sums sums = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, triangles_.size(), 4096), Sums{},
+    const auto join = [](Sums a, const Sums& b) {
+        a.box.extend(b.box);
+        a.corners.extend(b.corners);
+        a.made += b.made;
+        return a;
+    };
+    Sums sums = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, count, 4096), Sums{},
         [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
             for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
                 const Triangle& tri = triangles_[prim];
+                const std::size_t slot = front + prim;
                 // A triangle that can never be hit takes no reference (has_coincident_corners).
                 const bool never_hit = has_coincident_corners(tri);
-                if (!pieces) {
-                    scene_.prims[prim] = never_hit ? kUnused : std::uint32_t(prim);
-                    if (never_hit) continue;
-                    scene_.bounds[prim] = conservative_bounds(tri);
-                    scene_.centroids[prim] = centroid(tri);
-                    sum.box.extend(scene_.bounds[prim]);
-                    ++sum.made;
-                    continue;
+                scene_.prims[slot] = never_hit ? kUnused : std::uint32_t(prim);
+                if (presplit) {
+                    const Aabb corners = corners_bounds(tri);
+                    areas_[prim] = box_area(corners);
+                    sum.corners.extend(corners);
                 }
-                const std::size_t first = plan.first[prim], count = plan.first[prim + 1] - first;
-                const std::size_t made =
-                    never_hit ? 0
-                    : count == 1
-                        ? (scene_.bounds[first] = conservative_bounds(tri), 1)
-                        : split_triangle(tri, plan.grid,
-                                         std::span<Aabb>(scene_.bounds.data() + first, count));
-                for (std::size_t i = first; i < first + count; ++i) {
-                    scene_.prims[i] = i < first + made ? std::uint32_t(prim) : kUnused;
-                    if (i >= first + made) continue;
-                    scene_.centroids[i] = scene_.bounds[i].center();
-                    sum.box.extend(scene_.bounds[i]);
-                }
-                sum.made += made;
+                if (never_hit) continue;
+                const Aabb box = conservative_bounds(tri);
+                scene_.bounds[slot] = box;
+                // With pieces, every reference is binned by its box's centre, as a piece is.
+                scene_.centroids[slot] = presplit ? box.center() : centroid(tri);
+                sum.box.extend(box);
+                ++sum.made;
             }
             return sum;
         },
-        [](Sums a, const Sums& b) {
-            a.box.extend(b.box);
-            a.made += b.made;
-            return a;
-        });
-    scene_.box = sums.box;
-    // Slots left unused: triangles never hit, pieces that could not be cut.
+        join);
+    const PresplitPlan plan =
+        presplit ? plan_presplit(areas_, params_.presplit, sums.corners) : PresplitPlan{};
+    // cut[k]'s pieces take [first[k], first[k + 1]), ending at `front`; the slots before them
+    // stay unused.
+    std::vector<std::size_t> first(plan.cut.size() + 1, front);
+    for (std::size_t k = plan.cut.size(); k-- > 0;) first[k] = first[k + 1] - plan.pieces[k];
+    std::fill(scene_.prims.begin(), scene_.prims.begin() + std::ptrdiff_t(first[0]), kUnused);
+    const Sums pieces = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, plan.cut.size(), 16), Sums{},
+        [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                const std::uint32_t prim = plan.cut[k];
+                const std::size_t begin = first[k], end = first[k + 1];
+                // The plan shares the budget out over every triangle's box, so that it does not
+                // depend on the intersection test; one never hit gets no pieces.
+                const bool never_hit = scene_.prims[front + prim] == kUnused;
+                const std::size_t made =
+                    never_hit ? 0
+                              : split_triangle(
+                                    triangles_[prim], plan.grid,
+                                    std::span<Aabb>(scene_.bounds.data() + begin, end - begin));
+                for (std::size_t i = begin; i < end; ++i) {
+                    scene_.prims[i] = i < begin + made ? prim : kUnused;
+                    if (i < begin + made) scene_.centroids[i] = scene_.bounds[i].center();
+                }
+                if (never_hit) continue;
+                scene_.prims[front + prim] = kUnused;  // its pieces stand for it
+                sum.made += made - 1;
+            }
+            return sum;
+        },
+        join);
+    sums.made += pieces.made;
+    scene_.box = sums.box;  // the pieces lie in their triangles' boxes
+    // Slots left unused: room, triangles never hit or cut, pieces that could not be cut.
+    const std::size_t n = scene_.prims.size();
     if (sums.made < n) {
         std::size_t kept = 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -109,7 +141,7 @@ void EdacrtTracer::prepare_triangles() {
 
 std::size_t EdacrtTracer::working_bytes() const {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(triangles_) + bytes(scene_.bounds) + bytes(scene_.centroids) +
+    return bytes(triangles_) + bytes(areas_) + bytes(scene_.bounds) + bytes(scene_.centroids) +
            bytes(scene_.prims) + batch_.rays.bytes() + bytes(batch_.tris) + scratch_bytes();
 }
 

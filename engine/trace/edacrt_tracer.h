@@ -50,6 +50,7 @@ class EdacrtTracer final : public Tracer {
     EdacrtParams params_;
     Method method_;
     FrameVector<Triangle> triangles_;  // the scene's, in scene order
+    FrameVector<float> areas_;         // their boxes' areas, for the pre-split plan
     EdacrtScene scene_;
     BatchBuffers batch_;
 };

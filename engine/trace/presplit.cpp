@@ -16,15 +16,6 @@
 namespace edacrt {
 namespace {
 
-/// The box of the three corners.
-Aabb exact_bounds(const Triangle& tri) {
-    Aabb box;
-    box.extend(tri.p0);
-    box.extend(tri.p1);
-    box.extend(tri.p2);
-    return box;
-}
-
 /// What conservative_bounds adds on every side: 2^-20 of the largest coordinate magnitude of
 /// the triangle's exact box.
 float conservative_padding(const Aabb& exact) {
@@ -124,7 +115,7 @@ class Splitter {
 
     std::size_t split(const Triangle& tri, std::span<Aabb> out) const {
         const Polygon polygon = corners(tri);
-        return split(conservative_padding(exact_bounds(tri)), polygon, polygon.box(), out);
+        return split(conservative_padding(corners_bounds(tri)), polygon, polygon.box(), out);
     }
 
   private:
@@ -158,9 +149,13 @@ class Splitter {
     double grid_plane(int axis, double lo, double hi) const {
         const double origin = scene_.lo[axis];
         double cell = scene_.hi[axis] - origin;
+        // (lo - origin) / cell at each level, with one division: cell is the extent times a
+        // power of two, and scaling by one commutes with rounding, so this is exact.
+        double cells = (lo - origin) / cell;
         for (int level = 1; level <= kGridLevels; ++level) {
             cell *= 0.5;  // extent / 2^level, exactly
-            const double plane = origin + (std::floor((lo - origin) / cell) + 1.0) * cell;
+            cells *= 2.0;
+            const double plane = origin + (std::floor(cells) + 1.0) * cell;
             if (plane > lo && plane < hi) return plane;
         }
         return 0.5 * (lo + hi);
@@ -199,43 +194,32 @@ std::vector<std::uint32_t> extra_pieces(std::span<const float> areas, std::size_
 
 }  // namespace
 
-PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra) {
-    const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(triangles.size()));
+Aabb corners_bounds(const Triangle& tri) {
+    return {glm::min(glm::min(tri.p0, tri.p1), tri.p2), glm::max(glm::max(tri.p0, tri.p1), tri.p2)};
+}
+
+float box_area(const Aabb& corners) {
+    const glm::vec3 e = corners.hi - corners.lo;
+    const float area = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+    return area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
+}
+
+PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb& grid) {
+    const std::size_t count = areas.size();
+    const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(count));
     if (budget == 0) return {};
-    // One parallel pass over fixed blocks: the box areas, their sum and the scene box (the same
-    // sum, so the same pieces, for any thread count).
-    struct Sums {
-        double total = 0.0;
-        Aabb scene;
-    };
+    double total = 0.0;  // in order: the same sum, so the same pieces, for any thread count
     constexpr std::size_t kBlock = 4096;
-    std::vector<float> areas(triangles.size());
-    std::vector<Sums> blocks((triangles.size() + kBlock - 1) / kBlock);
-    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t block) {
-        Sums sum;
-        const std::size_t end = std::min(triangles.size(), (block + 1) * kBlock);
-        for (std::size_t i = block * kBlock; i < end; ++i) {
-            const Triangle& tri = triangles[i];
-            const glm::vec3 lo = glm::min(glm::min(tri.p0, tri.p1), tri.p2);
-            const glm::vec3 hi = glm::max(glm::max(tri.p0, tri.p1), tri.p2);
-            const glm::vec3 e = hi - lo;
-            const float area = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
-            areas[i] = area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
-            sum.total += double(areas[i]);
-            sum.scene.lo = glm::min(sum.scene.lo, lo);
-            sum.scene.hi = glm::max(sum.scene.hi, hi);
-        }
-        blocks[block] = sum;
-    });
-    Sums sums;
-    for (const Sums& block : blocks) {
-        sums.total += block.total;
-        sums.scene.extend(block.scene);
+    for (std::size_t begin = 0; begin < count; begin += kBlock) {
+        double block = 0.0;
+        for (std::size_t i = begin; i < std::min(count, begin + kBlock); ++i)
+            block += double(areas[i]);
+        total += block;
     }
-    const double min_area = kMinSplitArea * sums.total / double(triangles.size());
+    const double min_area = kMinSplitArea * total / double(count);
     std::vector<std::uint32_t> large;  // the triangles that may be cut
     std::vector<float> large_areas;
-    for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (std::size_t i = 0; i < areas.size(); ++i)
         if (areas[i] >= min_area && areas[i] > 0.0f) {
             large.push_back(std::uint32_t(i));
             large_areas.push_back(areas[i]);
@@ -243,16 +227,13 @@ PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra) {
     // A mesh of alike triangles has none to cut: no need to share out the budget.
     if (large.empty()) return {};
     const std::vector<std::uint32_t> extra_counts = extra_pieces(large_areas, budget, min_area);
-    if (std::all_of(extra_counts.begin(), extra_counts.end(), [](auto n) { return n == 0; }))
-        return {};  // nothing to cut
     PresplitPlan plan;
-    plan.first.resize(triangles.size() + 1);
-    plan.first[0] = 0;
-    for (std::size_t i = 0, k = 0; i < triangles.size(); ++i) {
-        const std::uint32_t extra = k < large.size() && large[k] == i ? extra_counts[k++] : 0;
-        plan.first[i + 1] = plan.first[i] + 1 + extra;
-    }
-    plan.grid = sums.scene;
+    for (std::size_t k = 0; k < large.size(); ++k)
+        if (extra_counts[k] != 0) {
+            plan.cut.push_back(large[k]);
+            plan.pieces.push_back(1 + extra_counts[k]);
+        }
+    plan.grid = grid;
     return plan;
 }
 

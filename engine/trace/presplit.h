@@ -4,21 +4,28 @@
 // Construction of High-Quality Bounding Volume Hierarchies", 2013, Section 5).
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "geometry/triangle.h"
-#include "util/frame_memory.h"
 
 namespace edacrt {
 
-/// How a frame's triangles are cut: each triangle whose box's surface area is at least twice
-/// the mean gets pieces in proportion to that area, at most `extra` times the triangle count in
-/// all (0: none). Triangle i has the references [first[i], first[i + 1]).
+/// Which of a frame's triangles are cut, and into how many pieces: each triangle whose box's
+/// surface area is at least twice the mean gets extra pieces in proportion to that area, at most
+/// `extra` times the triangle count in all (0: none).
 struct PresplitPlan {
-    FrameVector<std::uint32_t> first;  // empty when no triangle is cut: use the triangles
-    Aabb grid;                         // the scene box, whose grid the cuts follow
+    std::vector<std::uint32_t> cut;     // the triangles cut, ascending
+    std::vector<std::uint32_t> pieces;  // how many pieces cut[k] becomes (at least 2)
+    Aabb grid;                          // the scene box, whose grid the cuts follow
 };
-/// Parallel; the same plan for any thread count.
-PresplitPlan plan_presplit(std::span<const Triangle> triangles, float extra);
+/// The box of tri's corners, and its surface area (0 if that is not finite): the plan's
+/// measure of a triangle.
+Aabb corners_bounds(const Triangle& tri);
+float box_area(const Aabb& corners);
+
+/// `areas[i]`: box_area(corners_bounds()) of triangle i. Serial: the same plan for any thread
+/// count.
+PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb& grid);
 
 /// Cuts `tri` into out.size() pieces, recursively by the coarsest plane of a grid over
 /// plan.grid that crosses its piece's longest axis, the pieces shared in proportion to the

@@ -2,8 +2,10 @@
 // Memory for per-frame arrays that a fresh tracer fills once per frame (edacrt bench makes one
 // per frame; an animation refills them every frame): large blocks on 2 MiB pages where the
 // kernel allows it (transparent huge pages on request), since touching tens of megabytes in
-// 4 KiB pages costs a page fault per page, and elements left uninitialised by a resize, since
-// the caller writes every one at once (value-initialising them first was a second pass).
+// 4 KiB pages costs a page fault per page; large blocks kept mapped when freed, for the next
+// frame's arrays of about the same size (frame_memory.cpp); and elements left uninitialised by
+// a resize, since the caller writes every one at once (value-initialising them first was a
+// second pass).
 #include <cstddef>
 #include <new>
 #include <type_traits>
@@ -13,7 +15,8 @@
 namespace edacrt {
 
 /// `bytes` aligned to `align` (a power of two), on huge pages when large; free_frame_memory
-/// releases it. Throws std::bad_alloc.
+/// releases it (a large block to the next allocation that fits it). Thread-safe. Throws
+/// std::bad_alloc.
 void* allocate_frame_memory(std::size_t bytes, std::size_t align);
 void free_frame_memory(void* p) noexcept;
 

@@ -277,20 +277,27 @@ bool intersect_triangle_rare(const WatertightRay& r, const Triangle& tri,
     return decide_distance(r, tri, s, s.u + s.v + s.w, tmin, tmax, out);
 }
 
-/// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight
-/// test rounds at the scale of the coordinates, so it may accept a ray that passes a few ulps
-/// outside the exact triangle (or a hit at t = -0 from an origin on the surface); a divide-and-
-/// conquer filter or a BVH that culls with these boxes never rejects such a ray.
-inline Aabb conservative_bounds(const Triangle& tri) {
-    Aabb box;
-    box.extend(tri.p0);
-    box.extend(tri.p1);
-    box.extend(tri.p2);
+/// The box of the triangle's corners.
+inline Aabb corners_bounds(const Triangle& tri) {
+    return {glm::min(glm::min(tri.p0, tri.p1), tri.p2), glm::max(glm::max(tri.p0, tri.p1), tri.p2)};
+}
+
+/// The box of a triangle's corners, widened by 2^-20 of its largest coordinate magnitude (see
+/// conservative_bounds(const Triangle&)).
+inline Aabb conservative_bounds(Aabb box) {
     const glm::vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
     const float pad = std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
     box.lo -= glm::vec3(pad);
     box.hi += glm::vec3(pad);
     return box;
+}
+
+/// The triangle's box, widened by 2^-20 of its largest coordinate magnitude. The watertight
+/// test rounds at the scale of the coordinates, so it may accept a ray that passes a few ulps
+/// outside the exact triangle (or a hit at t = -0 from an origin on the surface); a divide-and-
+/// conquer filter or a BVH that culls with these boxes never rejects such a ray.
+inline Aabb conservative_bounds(const Triangle& tri) {
+    return conservative_bounds(corners_bounds(tri));
 }
 
 /// Each corner scaled before the sum, so corners near the float range cannot overflow it.

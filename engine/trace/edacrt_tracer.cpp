@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <numeric>
 
 #include "trace/edacrt_observer.h"
 #include "trace/presplit.h"
@@ -55,16 +56,14 @@ void EdacrtTracer::prepare_triangles() {
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
     struct Sums {
         Aabb box;
-        Aabb corners;          // without conservative_bounds' padding: the pre-split's grid
-        std::size_t made = 0;  // references written
+        Aabb corners;  // without conservative_bounds' padding: the pre-split's grid
     };
     const auto join = [](Sums a, const Sums& b) {
         a.box.extend(b.box);
         a.corners.extend(b.corners);
-        a.made += b.made;
         return a;
     };
-    Sums sums = tbb::parallel_reduce(
+    const Sums sums = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, count, 4096), Sums{},
         [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
             for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
@@ -73,18 +72,17 @@ void EdacrtTracer::prepare_triangles() {
                 // A triangle that can never be hit takes no reference (has_coincident_corners).
                 const bool never_hit = has_coincident_corners(tri);
                 scene_.prims[slot] = never_hit ? kUnused : std::uint32_t(prim);
+                const Aabb corners = corners_bounds(tri);
                 if (presplit) {
-                    const Aabb corners = corners_bounds(tri);
                     areas_[prim] = box_area(corners);
                     sum.corners.extend(corners);
                 }
                 if (never_hit) continue;
-                const Aabb box = conservative_bounds(tri);
+                const Aabb box = conservative_bounds(corners);
                 scene_.bounds[slot] = box;
                 // With pieces, every reference is binned by its box's centre, as a piece is.
                 scene_.centroids[slot] = presplit ? box.center() : centroid(tri);
                 sum.box.extend(box);
-                ++sum.made;
             }
             return sum;
         },
@@ -96,53 +94,51 @@ void EdacrtTracer::prepare_triangles() {
     std::vector<std::size_t> first(plan.cut.size() + 1, front);
     for (std::size_t k = plan.cut.size(); k-- > 0;) first[k] = first[k + 1] - plan.pieces[k];
     std::fill(scene_.prims.begin(), scene_.prims.begin() + std::ptrdiff_t(first[0]), kUnused);
-    const Sums pieces = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, plan.cut.size(), 16), Sums{},
-        [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
-            for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                const std::uint32_t prim = plan.cut[k];
-                const std::size_t begin = first[k], end = first[k + 1];
-                // The plan shares the budget out over every triangle's box, so that it does not
-                // depend on the intersection test; one never hit gets no pieces.
-                const bool never_hit = scene_.prims[front + prim] == kUnused;
-                const std::size_t made =
-                    never_hit ? 0
-                              : split_triangle(
-                                    triangles_[prim], plan.grid,
-                                    std::span<Aabb>(scene_.bounds.data() + begin, end - begin));
-                for (std::size_t i = begin; i < end; ++i) {
-                    scene_.prims[i] = i < begin + made ? prim : kUnused;
-                    if (i < begin + made) scene_.centroids[i] = scene_.bounds[i].center();
-                }
-                if (never_hit) continue;
-                scene_.prims[front + prim] = kUnused;  // its pieces stand for it
-                sum.made += made - 1;
-            }
-            return sum;
-        },
-        join);
-    sums.made += pieces.made;
-    scene_.box = sums.box;  // the pieces lie in their triangles' boxes
-    // Slots left unused: room, triangles never hit or cut, pieces that could not be cut.
-    const std::size_t n = scene_.prims.size();
-    if (sums.made < n) {
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            if (scene_.prims[i] == kUnused) continue;
-            scene_.bounds[kept] = scene_.bounds[i];
-            scene_.centroids[kept] = scene_.centroids[i];
-            scene_.prims[kept++] = scene_.prims[i];
+    // Cut triangle k's pieces replace its reference. The plan shares the budget out over every
+    // triangle's box, so that it does not depend on the intersection test; one never hit gets
+    // no pieces.
+    const auto place_pieces = [&](std::size_t k) {
+        const std::uint32_t prim = plan.cut[k];
+        const std::size_t begin = first[k], end = first[k + 1];
+        const bool never_hit = scene_.prims[front + prim] == kUnused;
+        const std::size_t made =
+            never_hit ? 0
+                      : split_triangle(triangles_[prim], plan.grid,
+                                       std::span<Aabb>(scene_.bounds.data() + begin, end - begin));
+        for (std::size_t i = begin; i < end; ++i) {
+            scene_.prims[i] = i < begin + made ? prim : kUnused;
+            if (i < begin + made) scene_.centroids[i] = scene_.bounds[i].center();
         }
-        scene_.bounds.resize(kept);
-        scene_.centroids.resize(kept);
-        scene_.prims.resize(kept);
-    }
+        if (!never_hit) scene_.prims[front + prim] = kUnused;
+    };
+    tbb::parallel_for(std::size_t(0), plan.cut.size(), place_pieces);
+    scene_.box = sums.box;  // the pieces lie in their triangles' boxes
+    // The slots in use, in order, are the recursion's triangles; the others (room, triangles
+    // never hit or cut, pieces that could not be cut) stay where they are, as moving the rest
+    // down was a serial pass. Per block of slots a count, then each block writes its own.
+    constexpr std::size_t kBlock = 16384;
+    const std::uint32_t* prims = scene_.prims.data();
+    const std::size_t n = scene_.prims.size(), blocks = (n + kBlock - 1) / kBlock;
+    std::vector<std::size_t> offset(blocks + 1, 0);
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        offset[b + 1] =
+            std::size_t(std::count_if(prims + b * kBlock, prims + std::min(n, (b + 1) * kBlock),
+                                      [](std::uint32_t p) { return p != kUnused; }));
+    });
+    std::partial_sum(offset.begin(), offset.end(), offset.begin());
+    references_.resize(offset.back());
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        std::size_t out = offset[b];
+        for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+            if (prims[i] != kUnused) references_[out++] = std::uint32_t(i);
+    });
 }
 
 std::size_t EdacrtTracer::working_bytes() const {
     const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     return bytes(triangles_) + bytes(areas_) + bytes(scene_.bounds) + bytes(scene_.centroids) +
-           bytes(scene_.prims) + batch_.rays.bytes() + bytes(batch_.tris) + scratch_bytes();
+           bytes(scene_.prims) + bytes(references_) + batch_.rays.bytes() + bytes(batch_.tris) +
+           scratch_bytes();
 }
 
 std::size_t EdacrtTracer::scratch_bytes() const {
@@ -164,14 +160,14 @@ TraceStats EdacrtTracer::trace_batch(std::span<const Ray> rays, std::span<Hit> h
 template <Query Q>
 TraceStats EdacrtTracer::trace_with(std::span<const Ray> rays, std::span<Hit> hits,
                                     TraceDetail* detail) {
-    const std::size_t n = rays.size(), triangles = scene_.prims.size();
+    const std::size_t n = rays.size(), triangles = references_.size();
     batch_.tris.resize(triangles);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& range) {
         std::fill(hits.begin() + range.begin(), hits.begin() + range.end(), Hit{});
     });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const auto& range) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-            batch_.tris[i] = std::uint32_t(i);
+        std::copy(references_.begin() + range.begin(), references_.begin() + range.end(),
+                  batch_.tris.begin() + range.begin());
     });
     const RayBatch batch{batch_.rays.fill(rays), hits.data()};
 

@@ -52,6 +52,7 @@ class EdacrtTracer final : public Tracer {
     FrameVector<Triangle> triangles_;  // the scene's, in scene order
     FrameVector<float> areas_;         // their boxes' areas, for the pre-split plan
     EdacrtScene scene_;
+    FrameVector<std::uint32_t> references_;  // the slots of scene_ in use, in order
     BatchBuffers batch_;
 };
 

@@ -71,26 +71,34 @@ Polygon corners(const Triangle& tri) {
     return polygon;
 }
 
-/// Cuts `polygon` by the plane x[axis] = plane into its parts below and above it (one
+/// Cuts `polygon` by the plane x[A] = plane into its parts below and above it (one
 /// Sutherland-Hodgman step for each side; a crossing is put exactly on the plane, and a corner
-/// on the plane belongs to both). False when a part would not fit (it then stays whole).
-bool cut(const Polygon& polygon, int axis, double plane, Polygon& below, Polygon& above) {
+/// on the plane belongs to both). False when a part would not fit (it then stays whole). The
+/// axis is a template argument so that x[A] is a member, not a switch.
+template <int A>
+bool cut_on(const Polygon& polygon, double plane, Polygon& below, Polygon& above) {
     below.size = above.size = 0;
     const std::size_t room = polygon.corners.size() - 1;
     for (std::size_t i = 0; i < polygon.size; ++i) {
         const glm::dvec3& a = polygon.corners[i];
-        const glm::dvec3& b = polygon.corners[(i + 1) % polygon.size];
+        const glm::dvec3& b = polygon.corners[i + 1 == polygon.size ? 0 : i + 1];
         if (below.size >= room || above.size >= room) return false;
-        if (a[axis] <= plane) below.corners[below.size++] = a;
-        if (a[axis] >= plane) above.corners[above.size++] = a;
-        if ((a[axis] < plane && b[axis] > plane) || (a[axis] > plane && b[axis] < plane)) {
-            glm::dvec3 p = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
-            p[axis] = plane;
+        if (a[A] <= plane) below.corners[below.size++] = a;
+        if (a[A] >= plane) above.corners[above.size++] = a;
+        if ((a[A] < plane && b[A] > plane) || (a[A] > plane && b[A] < plane)) {
+            glm::dvec3 p = a + (b - a) * ((plane - a[A]) / (b[A] - a[A]));
+            p[A] = plane;
             below.corners[below.size++] = p;
             above.corners[above.size++] = p;
         }
     }
     return true;
+}
+
+bool cut(const Polygon& polygon, int axis, double plane, Polygon& below, Polygon& above) {
+    return axis == 0   ? cut_on<0>(polygon, plane, below, above)
+           : axis == 1 ? cut_on<1>(polygon, plane, below, above)
+                       : cut_on<2>(polygon, plane, below, above);
 }
 
 /// Rounds outwards to float (the double box stays inside) and pads like conservative_bounds.
@@ -193,16 +201,6 @@ std::vector<std::uint32_t> extra_pieces(std::span<const float> areas, std::size_
 }
 
 }  // namespace
-
-Aabb corners_bounds(const Triangle& tri) {
-    return {glm::min(glm::min(tri.p0, tri.p1), tri.p2), glm::max(glm::max(tri.p0, tri.p1), tri.p2)};
-}
-
-float box_area(const Aabb& corners) {
-    const glm::vec3 e = corners.hi - corners.lo;
-    const float area = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
-    return area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
-}
 
 PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb& grid) {
     const std::size_t count = areas.size();

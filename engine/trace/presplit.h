@@ -3,6 +3,7 @@
 // Greiner 2007, with the budget and grid-aligned planes of Karras & Aila, "Fast Parallel
 // Construction of High-Quality Bounding Volume Hierarchies", 2013, Section 5).
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -18,10 +19,13 @@ struct PresplitPlan {
     std::vector<std::uint32_t> pieces;  // how many pieces cut[k] becomes (at least 2)
     Aabb grid;                          // the scene box, whose grid the cuts follow
 };
-/// The box of tri's corners, and its surface area (0 if that is not finite): the plan's
-/// measure of a triangle.
-Aabb corners_bounds(const Triangle& tri);
-float box_area(const Aabb& corners);
+/// The surface area of the box of a triangle's corners (corners_bounds()), 0 if that is not
+/// finite: the plan's measure of a triangle.
+inline float box_area(const Aabb& corners) {
+    const glm::vec3 e = corners.hi - corners.lo;
+    const float area = 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
+    return area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
+}
 
 /// `areas[i]`: box_area(corners_bounds()) of triangle i. Serial: the same plan for any thread
 /// count.

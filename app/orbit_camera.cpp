@@ -12,6 +12,7 @@ namespace edacrt::app {
 namespace {
 
 constexpr float kMaxPitch = 1.55f;  // just under 90 degrees: keeps `up` usable
+constexpr float kRadiansPerPixel = 0.008f;
 
 /// A unit vector perpendicular to the unit vector up.
 glm::vec3 any_perpendicular(glm::vec3 up) {
@@ -49,18 +50,36 @@ void OrbitCamera::reset(const Camera& camera) {
     commit(next, "view");  // valid, yet its eye rebuilt from look-at and distance may overflow
 }
 
-Camera OrbitCamera::camera() const {
+glm::vec3 OrbitCamera::direction() const {
     const glm::vec3 x = any_perpendicular(up_), z = glm::cross(x, up_);
-    const glm::vec3 dir =
-        std::cos(pitch_) * (std::sin(yaw_) * x + std::cos(yaw_) * z) + std::sin(pitch_) * up_;
-    return Camera{target_ + distance_ * dir, target_, up_, vfov_degrees_};
+    return std::cos(pitch_) * (std::sin(yaw_) * x + std::cos(yaw_) * z) + std::sin(pitch_) * up_;
+}
+
+Camera OrbitCamera::camera() const {
+    return Camera{target_ + distance_ * direction(), target_, up_, vfov_degrees_};
 }
 
 void OrbitCamera::orbit(float dx, float dy) {
     OrbitCamera next = *this;
-    next.yaw_ -= dx * 0.008f;
-    next.pitch_ = std::clamp(pitch_ + dy * 0.008f, -kMaxPitch, kMaxPitch);
+    next.yaw_ -= dx * kRadiansPerPixel;
+    next.pitch_ = std::clamp(pitch_ + dy * kRadiansPerPixel, -kMaxPitch, kMaxPitch);
     commit(next, "orbit");
+}
+
+void OrbitCamera::look(float dx, float dy) {
+    // The same turn of the view direction as orbit(), about the eye: the target moves.
+    const glm::vec3 eye = camera().eye;
+    OrbitCamera next = *this;
+    next.yaw_ -= dx * kRadiansPerPixel;
+    next.pitch_ = std::clamp(pitch_ + dy * kRadiansPerPixel, -kMaxPitch, kMaxPitch);
+    next.target_ = eye - distance_ * next.direction();
+    commit(next, "look");
+}
+
+void OrbitCamera::orbit_about(const glm::vec3& point) {
+    Camera c = camera();
+    c.look_at = point;
+    reset(c);  // refused, the camera unchanged, for a point at the eye or straight above it
 }
 
 void OrbitCamera::pan(float dx, float dy, float height) {
@@ -82,13 +101,25 @@ void OrbitCamera::zoom(float steps) {
     commit(next, "zoom");
 }
 
-void OrbitCamera::fly(float forward, float right, float up, float seconds) {
+void OrbitCamera::fly(float forward, float right, float up, float distance) {
     const Camera c = camera();
     const glm::vec3 f = glm::normalize(c.look_at - c.eye);
     const glm::vec3 r = glm::normalize(glm::cross(f, up_));
     OrbitCamera next = *this;
-    next.target_ += (forward * f + right * r + up * up_) * (distance_ * seconds);
+    next.target_ += (forward * f + right * r + up * up_) * distance;
     commit(next, "fly");
+}
+
+DragAction drag_action(int button, bool shift, bool eye_inside_scene) {
+    if (button == 2 || (button == 0 && shift)) return DragAction::pan;
+    if (button == 1 || eye_inside_scene) return DragAction::look;
+    return DragAction::orbit;
+}
+
+float fly_speed(const Aabb& scene_box, int step) {
+    const float diagonal = scene_box.empty() ? 1.0f : glm::length(scene_box.extent());
+    return 0.1f * (diagonal > 0.0f ? diagonal : 1.0f) *
+           std::pow(1.25f, float(std::clamp(step, -kFlySpeedSteps, kFlySpeedSteps)));
 }
 
 }  // namespace edacrt::app

@@ -156,6 +156,24 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
              }
              return Next::next_frame;
          }},
+        {"look", 2, Args::real, "DX DY",
+         "turn the view about the eye as a right drag of DX, DY pixels does",
+         [](R&, Step& st) {
+             try {
+                 st.s.camera.look(float(st.c.numbers[0]), float(st.c.numbers[1]));
+             } catch (const InputError& e) {
+                 st.s.status = e.what();
+                 st.fail(e.what());
+             }
+             return Next::next_frame;
+         }},
+        {"orbit-about", 2, Args::fraction, "U V",
+         "orbit about the surface point at fractions U, V of the image (a double click)",
+         [](R&, Step& st) {
+             if (!orbit_about_pixel(st.s, float(st.c.numbers[0]), float(st.c.numbers[1])))
+                 st.fail(st.s.status);
+             return Next::next_frame;
+         }},
         {"wait-spp", 1, Args::count, "N",
          "until the shown image has N samples per pixel (of the current "
          "settings)",

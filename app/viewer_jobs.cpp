@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "render/default_camera.h"
 #include "render/render_memory.h"
 #include "render/wavefront.h"
+#include "trace/naive_tracer.h"
 #include "util/error.h"
 #include "util/output_file.h"
 #include "util/printable.h"
@@ -295,6 +297,35 @@ void write_bookmarks(ViewerState& s) {
 }
 
 }  // namespace
+
+bool orbit_about_pixel(ViewerState& s, float u, float v) {
+    if (!s.scene) return false;
+    const RenderSettings& rendered = s.submitted.settings;
+    const int width = rendered.width > 0 ? rendered.width : 1000;
+    const int height = rendered.height > 0 ? rendered.height : 1000;
+    const Ray ray = PinholeProjection(s.camera.camera(), width, height)
+                        .ray(std::clamp(u, 0.0f, 1.0f) * float(width),
+                             std::clamp(v, 0.0f, 1.0f) * float(height));
+    NaiveTracer tracer;  // one ray: no structure worth building
+    tracer.set_scene(*s.scene);
+    Hit hit;
+    tracer.trace({&ray, 1}, {&hit, 1}, Query::closest);
+    if (!hit.hit()) {
+        s.status = "nothing under the cursor to orbit about";
+        return false;
+    }
+    const glm::vec3 point = ray.org + hit.t * ray.dir;
+    try {
+        s.camera.orbit_about(point);
+    } catch (const InputError& e) {
+        s.status = e.what();
+        return false;
+    }
+    char where[96];
+    std::snprintf(where, sizeof where, "orbiting about %g %g %g", point.x, point.y, point.z);
+    s.status = where;
+    return true;
+}
 
 void save_bookmark(ViewerState& s, const std::string& name) {
     s.bookmarks.put(s.scene_path, {name, s.camera.camera()});

@@ -61,6 +61,12 @@ void change_camera(ViewerState& state, Change&& change) {
     }
 }
 
+/// Orbits about the surface point under fractions (u, v) of the image (the first hit of the
+/// camera ray there, from the rendered image's aspect): the eye stays, the look-at point
+/// becomes that point. Returns false, the view unchanged and the status line saying why,
+/// when the ray hits nothing or the camera refuses the point.
+bool orbit_about_pixel(ViewerState& state, float u, float v);
+
 /// Saves the view as the scene's bookmark `name` (replacing one of that name) and writes the
 /// bookmarks file, for the Camera tab's "save view" and the script's `bookmark`; the status
 /// line says where. Throws InputError ("bookmarks not saved: ...") when no file is known

@@ -69,7 +69,8 @@ ImageOutput save_settings(const ViewerState& s) {
 }
 
 /// Keys (while no text field has the keyboard): Tab or F1 hide the panels, H or ? the help, F12
-/// saves the image, Esc quits, R resets the view, WASD/QE fly. Shortcuts are the window's key
+/// saves the image, Esc quits, R resets the view, WASD/QE fly, +/- change the fly speed.
+/// Shortcuts are the window's key
 /// events since the last frame (s.keys), so a tap within one slow frame still counts; flying
 /// reads whether a key is held. ImGui 1.86 indexes keys by GLFW's key codes.
 void handle_keys(ViewerState& s, float dt, bool& quit) {
@@ -87,8 +88,14 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
     const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-    if (forward != 0 || right != 0 || up != 0)
-        change_camera(s, [&] { s.camera.fly(forward, right, up, dt); });
+    const int faster = keys.count(GLFW_KEY_EQUAL, GLFW_MOD_SHIFT) + keys.count(GLFW_KEY_KP_ADD) -
+                       keys.count(GLFW_KEY_MINUS) - keys.count(GLFW_KEY_KP_SUBTRACT);
+    if (faster != 0)
+        s.fly_speed_step = std::clamp(s.fly_speed_step + faster, -kFlySpeedSteps, kFlySpeedSteps);
+    if ((forward != 0 || right != 0 || up != 0) && s.scene) {
+        const float step = fly_speed(s.scene->bounds(), s.fly_speed_step) * dt;
+        change_camera(s, [&] { s.camera.fly(forward, right, up, step); });
+    }
     if (keys.pressed(GLFW_KEY_R)) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
     if (s.playback.frames) {  // the timeline: Space plays or pauses, arrows step 1/24 s each
         if (keys.count(GLFW_KEY_SPACE) % 2) toggle_play(s);
@@ -193,12 +200,29 @@ class Viewer {
             const auto drag = [&](ImGuiMouseButton b) {
                 return ImGui::IsMouseDragging(b) && in_image(io.MouseClickedPos[b]);
             };
+            const bool inside = s_.scene && s_.scene->bounds().contains(s_.camera.camera().eye);
             change_camera(s_, [&] {
-                if (drag(ImGuiMouseButton_Left)) s_.camera.orbit(d.x, d.y);
-                if (drag(ImGuiMouseButton_Right) || drag(ImGuiMouseButton_Middle))
-                    s_.camera.pan(d.x, d.y, image.h);
+                for (const int button : {0, 1, 2}) {
+                    if (!drag(button) || (d.x == 0.0f && d.y == 0.0f)) continue;
+                    switch (drag_action(button, io.KeyShift, inside)) {
+                        case DragAction::orbit:
+                            s_.camera.orbit(d.x, d.y);
+                            break;
+                        case DragAction::look:
+                            s_.camera.look(d.x, d.y);
+                            break;
+                        case DragAction::pan:
+                            s_.camera.pan(d.x, d.y, image.h);
+                            break;
+                    }
+                }
                 if (io.MouseWheel != 0.0f && in_image(io.MousePos)) s_.camera.zoom(io.MouseWheel);
             });
+            // A double click on the image orbits about the surface point under it.
+            if (!s_.picking && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) &&
+                in_image(io.MousePos))
+                orbit_about_pixel(s_, (io.MousePos.x - image.x) / image.w,
+                                  (io.MousePos.y - image.y) / image.h);
         }
         handle_keys(s_, dt_, quit_);
         s_.keys.clear();

@@ -182,6 +182,7 @@ struct ViewerState {
     float framebuffer_scale_x = 1.0f, framebuffer_scale_y = 1.0f;  // pixels per unit
 
     // Camera panel.
+    int fly_speed_step = 0;  // fly_speed(): +/- keys
     Bookmarks bookmarks;
     std::string bookmarks_path;
     std::string bookmark_name;

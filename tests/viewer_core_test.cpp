@@ -179,6 +179,126 @@ TEST(OrbitCamera, ResetReproducesTheCameraAndOrbitKeepsTheDistance) {
               glm::length(moved.eye - moved.look_at));
 }
 
+// Looking turns the view about the eye: the eye stays, the view direction turns as an orbit
+// of the same drag turns it, and the opposite drag turns it back.
+TEST(OrbitCamera, LookKeepsTheEyeAndTurnsTheView) {
+    OrbitCamera orbit;
+    const Camera camera{{1, 2, 5}, {0, 1, 0}, {0, 1, 0}, 40.0f};
+    orbit.reset(camera);
+    OrbitCamera orbiting = orbit;
+    orbit.look(80.0f, 25.0f);
+    orbiting.orbit(80.0f, 25.0f);
+    const Camera looked = orbit.camera(), orbited = orbiting.camera();
+    EXPECT_LT(glm::length(looked.eye - camera.eye), 1e-4f);
+    const glm::vec3 turned = glm::normalize(looked.look_at - looked.eye);
+    EXPECT_GT(glm::length(turned - glm::normalize(camera.look_at - camera.eye)), 0.3f);
+    EXPECT_LT(glm::length(turned - glm::normalize(orbited.look_at - orbited.eye)), 1e-4f);
+    orbit.look(-80.0f, -25.0f);
+    EXPECT_LT(glm::length(orbit.camera().look_at - camera.look_at), 1e-4f);
+}
+
+// Orbiting about a point keeps the eye, looks at the point, and orbits at its distance.
+TEST(OrbitCamera, OrbitAboutAPointKeepsTheEye) {
+    OrbitCamera orbit;
+    orbit.reset({{0, 1, 10}, {0, 1, -20}, {0, 1, 0}, 45.0f});
+    const glm::vec3 point(1.0f, 0.5f, 6.0f);
+    orbit.orbit_about(point);
+    EXPECT_LT(glm::length(orbit.camera().eye - glm::vec3(0, 1, 10)), 1e-4f);
+    EXPECT_LT(glm::length(orbit.camera().look_at - point), 1e-5f);
+    orbit.orbit(200.0f, 30.0f);
+    EXPECT_NEAR(glm::length(orbit.camera().eye - point), glm::length(glm::vec3(0, 1, 10) - point),
+                1e-4f);
+}
+
+// Flight covers the scene in ten seconds at step 0 whatever its units; each step is 1.25x, and
+// steps stop at +-kFlySpeedSteps. fly() moves eye and target by the distance given.
+TEST(OrbitCamera, FlySpeedFollowsTheSceneSize) {
+    const Aabb box{{0, 0, 0}, {30, 40, 0}};  // diagonal 50
+    EXPECT_FLOAT_EQ(fly_speed(box, 0), 5.0f);
+    const Aabb large{{0, 0, 0}, {3000, 4000, 0}};
+    EXPECT_FLOAT_EQ(fly_speed(large, 0), 500.0f);
+    EXPECT_FLOAT_EQ(fly_speed(box, 2), 5.0f * 1.25f * 1.25f);
+    EXPECT_FLOAT_EQ(fly_speed(box, 1000), fly_speed(box, kFlySpeedSteps));
+    EXPECT_GT(fly_speed(Aabb{}, 0), 0.0f);  // an empty scene still flies
+    OrbitCamera orbit;
+    orbit.reset({{0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 45.0f});
+    orbit.fly(1.0f, 0.0f, 0.0f, 2.5f);
+    EXPECT_NEAR(orbit.camera().eye.z, 7.5f, 1e-5f);
+    EXPECT_NEAR(orbit.camera().look_at.z, -2.5f, 1e-5f);
+}
+
+// Left drags orbit from outside the scene's box and look from inside it, so no drag inside an
+// interior swings the eye out through a wall; right drags look, middle and Shift+left pan.
+TEST(OrbitCamera, DragsInsideTheSceneNeverMoveTheEyeOut) {
+    EXPECT_EQ(drag_action(0, false, false), DragAction::orbit);
+    EXPECT_EQ(drag_action(0, false, true), DragAction::look);
+    EXPECT_EQ(drag_action(1, false, false), DragAction::look);
+    EXPECT_EQ(drag_action(2, false, true), DragAction::pan);
+    EXPECT_EQ(drag_action(0, true, true), DragAction::pan);
+    // Sponza's default view: the eye inside, the look-at point on the far wall.
+    const Aabb building{{-19.2f, -0.1f, -8.0f}, {18.0f, 15.4f, 7.2f}};
+    OrbitCamera orbit;
+    orbit.reset({{-10.0f, 2.0f, -0.3f}, {14.0f, 4.0f, 0.1f}, {0, 1, 0}, 60.0f});
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> pixels(-60.0f, 60.0f);
+    for (int i = 0; i < 200; ++i) {
+        const bool inside = building.contains(orbit.camera().eye);
+        ASSERT_TRUE(inside) << "drag " << i;
+        const float dx = pixels(rng), dy = pixels(rng);
+        if (drag_action(0, false, inside) == DragAction::orbit)
+            orbit.orbit(dx, dy);
+        else
+            orbit.look(dx, dy);
+    }
+}
+
+// A double click orbits about the surface under the cursor: the camera ray's first hit.
+TEST(OrbitCamera, OrbitAboutAPixelTakesTheSurfaceUnderIt) {
+    ViewerState s;
+    s.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    const Aabb box = s.scene->bounds();
+    const glm::vec3 centre = box.center();
+    // From the open side, looking at the back wall's centre.
+    s.camera.reset({centre + glm::vec3(0, 0, 3.0f * box.extent().z), centre, {0, 1, 0}, 40.0f});
+    const glm::vec3 eye = s.camera.camera().eye;
+    ASSERT_TRUE(orbit_about_pixel(s, 0.5f, 0.5f)) << s.status;
+    EXPECT_LT(glm::length(s.camera.camera().eye - eye), 1e-3f);
+    const glm::vec3 point = s.camera.camera().look_at;
+    const Aabb near_box{box.lo - glm::vec3(1e-3f), box.hi + glm::vec3(1e-3f)};
+    EXPECT_TRUE(near_box.contains(point));
+    EXPECT_NE(s.status.find("orbiting about"), std::string::npos);
+    // Looking away from the box: nothing there, and the view stays.
+    s.camera.reset({centre + glm::vec3(0, 0, 3.0f * box.extent().z),
+                    centre + glm::vec3(0, 0, 6.0f * box.extent().z),
+                    {0, 1, 0},
+                    40.0f});
+    const Camera away = s.camera.camera();
+    EXPECT_FALSE(orbit_about_pixel(s, 0.5f, 0.5f));
+    EXPECT_EQ(s.camera.camera(), away);
+    EXPECT_EQ(s.status, "nothing under the cursor to orbit about");
+}
+
+// The navigation verbs: look takes pixels, orbit-about fractions of the image; a script that
+// looks around in the Cornell box keeps its eye, and orbit-about there names the point.
+TEST(OrbitCamera, ScriptLooksAndOrbitsAboutAPoint) {
+    EXPECT_EQ(parse_script("look 10 -5\norbit-about 0.5 0.25\n", "s")[1].numbers,
+              (std::vector<double>{0.5, 0.25}));
+    EXPECT_EQ(test::error_of([] { parse_script("orbit-about 2 0\n", "s"); }).rfind("s:1: ", 0), 0u);
+    ViewerState s;
+    s.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    const Aabb box = s.scene->bounds();
+    s.camera.reset(
+        {box.center() + glm::vec3(0, 0, 3.0f * box.extent().z), box.center(), {0, 1, 0}, 40.0f});
+    const glm::vec3 eye = s.camera.camera().eye;
+    ScriptRunner runner(parse_script("look 5 2\norbit-about 0.5 0.5\nquit\n", "s"));
+    bool quit = false;
+    std::string screenshot;
+    for (int frame = 0; frame < 10 && !quit; ++frame) runner.step(s, {}, screenshot, quit);
+    EXPECT_TRUE(quit);
+    EXPECT_LT(glm::length(s.camera.camera().eye - eye), 1e-3f);
+    EXPECT_NE(s.status.find("orbiting about"), std::string::npos) << s.status;
+}
+
 TEST(HeatMap, ValuesComeFromThePerRayStatistics) {
     TraceDetail detail;
     detail.rays = {{3, 4, 5, 6}, {7, 8, 9, 10}};
@@ -499,7 +619,10 @@ TEST(OrbitCamera, ChangesBeyondFloatRangeAreRefusedAndKeepTheCamera) {
         {"pan", [&] { orbit.pan(3e38f, -3e38f, 1.0f); }},
         {"zoom", [&] { orbit.zoom(-1e4f); }},
         {"zoom", [&] { orbit.zoom(nan); }},
-        {"fly", [&] { orbit.fly(1.0f, 0.0f, 0.0f, 1e38f); }},
+        {"fly", [&] { orbit.fly(1.0f, 0.0f, 0.0f, huge); }},
+        {"fly", [&] { orbit.fly(1.0f, 1.0f, 0.0f, 3e38f); }},
+        {"look", [&] { orbit.look(nan, 1.0f); }},
+        {"view", [&] { orbit.orbit_about(before.eye); }},
         {"view",
          [&] {
              orbit.reset({{3e38f, 0, 0}, {-3e38f, 0, 0}, {0, 1, 0}, 45.0f});

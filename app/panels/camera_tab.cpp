@@ -4,6 +4,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <string>
 
@@ -48,6 +49,17 @@ void draw_camera_tab(ViewerState& s) {
     ImGui::PopItemWidth();
     if (edited) change_camera(s, [&] { s.camera.reset(c); });
     if (ImGui::Button("reset view (R)")) change_camera(s, [&] { s.camera.reset(s.scene_camera); });
+    if (s.scene) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0f);
+        char speed[32];  // the slider shows the speed, not the step
+        std::snprintf(speed, sizeof speed, "%.3g /s",
+                      double(fly_speed(s.scene->bounds(), s.fly_speed_step)));
+        ImGui::SliderInt("fly speed", &s.fly_speed_step, -kFlySpeedSteps, kFlySpeedSteps, speed);
+        wrapped_tooltip(
+            "WASD, QE: world units per second, a tenth of the scene's diagonal at "
+            "0, times 1.25 per step (+ / - keys)");
+    }
 
     ImGui::Separator();
     if (ImGui::Button("copy as command line")) ImGui::SetClipboardText(s.command_line.c_str());

@@ -15,10 +15,13 @@ void draw_help(ViewerState& s) {
                  ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
                      ImGuiWindowFlags_NoCollapse);
     constexpr const char* kKeys[][2] = {
-        {"left drag", "orbit around the look-at point"},
-        {"right / middle drag", "pan"},
+        {"left drag", "orbit around the look-at point (eye inside the scene's box: look)"},
+        {"right drag", "look around, the eye staying where it is"},
+        {"middle or Shift + left drag", "pan"},
         {"wheel", "move closer / away"},
+        {"double click", "orbit about the point under the cursor"},
         {"W A S D, Q E", "fly forward, left, back, right, down, up"},
+        {"+ / -", "fly faster / slower (the Camera tab shows the speed)"},
         {"R", "reset the view to the scene's"},
         {"Tab or F1", "hide / show all panels"},
         {"H or ?", "this help"},

@@ -21,6 +21,10 @@ struct Aabb {
         hi = glm::max(hi, b.hi);
     }
     bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+    bool contains(const glm::vec3& p) const {
+        return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z &&
+               p.z <= hi.z;
+    }
     glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
     glm::vec3 center() const { return 0.5f * (lo + hi); }
     float surface_area() const {

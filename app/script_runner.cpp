@@ -36,6 +36,18 @@ std::string layout_signature(const ViewerState& s) {
     return text;
 }
 
+/// A drag of the script's DX, DY pixels (OrbitCamera::orbit or look): a refusal shows on the
+/// status line, as a drag shows it, and fails the script.
+ScriptNext drag_camera(ScriptStep& st, void (OrbitCamera::*drag)(float, float)) {
+    try {
+        (st.s.camera.*drag)(float(st.c.numbers[0]), float(st.c.numbers[1]));
+    } catch (const InputError& e) {
+        st.s.status = e.what();
+        st.fail(e.what());
+    }
+    return ScriptNext::next_frame;
+}
+
 std::string seconds_text(double seconds) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", seconds);
@@ -147,26 +159,10 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
              return Next::next_frame;
          }},
         {"orbit", 2, Args::real, "DX DY", "drag the camera by DX, DY pixels",
-         [](R&, Step& st) {
-             try {
-                 st.s.camera.orbit(float(st.c.numbers[0]), float(st.c.numbers[1]));
-             } catch (const InputError& e) {
-                 st.s.status = e.what();  // as a drag shows it
-                 st.fail(e.what());
-             }
-             return Next::next_frame;
-         }},
+         [](R&, Step& st) { return drag_camera(st, &OrbitCamera::orbit); }},
         {"look", 2, Args::real, "DX DY",
          "turn the view about the eye as a right drag of DX, DY pixels does",
-         [](R&, Step& st) {
-             try {
-                 st.s.camera.look(float(st.c.numbers[0]), float(st.c.numbers[1]));
-             } catch (const InputError& e) {
-                 st.s.status = e.what();
-                 st.fail(e.what());
-             }
-             return Next::next_frame;
-         }},
+         [](R&, Step& st) { return drag_camera(st, &OrbitCamera::look); }},
         {"orbit-about", 2, Args::fraction, "U V",
          "orbit about the surface point at fractions U, V of the image (a double click)",
          [](R&, Step& st) {

@@ -300,9 +300,11 @@ void write_bookmarks(ViewerState& s) {
 
 bool orbit_about_pixel(ViewerState& s, float u, float v) {
     if (!s.scene) return false;
+    // The image's aspect: of the render, else of the region it will fill.
     const RenderSettings& rendered = s.submitted.settings;
-    const int width = rendered.width > 0 ? rendered.width : 1000;
-    const int height = rendered.height > 0 ? rendered.height : 1000;
+    const bool known = rendered.width > 0 && rendered.height > 0;
+    const int width = known ? rendered.width : std::max(1, int(s.layout.image.w));
+    const int height = known ? rendered.height : std::max(1, int(s.layout.image.h));
     const Ray ray = PinholeProjection(s.camera.camera(), width, height)
                         .ray(std::clamp(u, 0.0f, 1.0f) * float(width),
                              std::clamp(v, 0.0f, 1.0f) * float(height));

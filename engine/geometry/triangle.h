@@ -282,11 +282,17 @@ inline Aabb corners_bounds(const Triangle& tri) {
     return {glm::min(glm::min(tri.p0, tri.p1), tri.p2), glm::max(glm::max(tri.p0, tri.p1), tri.p2)};
 }
 
-/// The box of a triangle's corners, widened by 2^-20 of its largest coordinate magnitude (see
+/// What conservative_bounds adds on every side of the box of a triangle's corners: 2^-20 of
+/// its largest coordinate magnitude.
+inline float conservative_padding(const Aabb& corners) {
+    const glm::vec3 magnitude = glm::max(glm::abs(corners.lo), glm::abs(corners.hi));
+    return std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
+}
+
+/// The box of a triangle's corners, widened by conservative_padding() (see
 /// conservative_bounds(const Triangle&)).
 inline Aabb conservative_bounds(Aabb box) {
-    const glm::vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
-    const float pad = std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
+    const float pad = conservative_padding(box);
     box.lo -= glm::vec3(pad);
     box.hi += glm::vec3(pad);
     return box;

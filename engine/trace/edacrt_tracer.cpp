@@ -5,6 +5,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <limits>
 #include <numeric>
@@ -45,9 +46,8 @@ void EdacrtTracer::prepare_triangles() {
     // copied: a copy per reference was a third of this pass's writes).
     const std::size_t count = triangles_.size();
     const bool presplit = params_.presplit != 0.0f;
-    // Room for every piece a plan can make: at most presplit * count extra, on at most as many
-    // triangles.
-    const std::size_t front = presplit ? 2 * std::size_t(params_.presplit * float(count)) : 0;
+    // Room for every piece a plan can make (presplit_budget()).
+    const std::size_t front = presplit ? 2 * presplit_budget(count, params_.presplit) : 0;
     scene_.bounds.resize(front + count);
     scene_.centroids.resize(front + count);
     scene_.prims.resize(front + count);
@@ -92,7 +92,10 @@ void EdacrtTracer::prepare_triangles() {
     // cut[k]'s pieces take [first[k], first[k + 1]), ending at `front`; the slots before them
     // stay unused.
     std::vector<std::size_t> first(plan.cut.size() + 1, front);
-    for (std::size_t k = plan.cut.size(); k-- > 0;) first[k] = first[k + 1] - plan.pieces[k];
+    for (std::size_t k = plan.cut.size(); k-- > 0;) {
+        assert(first[k + 1] >= plan.pieces[k]);  // within the room
+        first[k] = first[k + 1] - plan.pieces[k];
+    }
     std::fill(scene_.prims.begin(), scene_.prims.begin() + std::ptrdiff_t(first[0]), kUnused);
     // Cut triangle k's pieces replace its reference. The plan shares the budget out over every
     // triangle's box, so that it does not depend on the intersection test; one never hit gets

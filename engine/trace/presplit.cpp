@@ -16,13 +16,6 @@
 namespace edacrt {
 namespace {
 
-/// What conservative_bounds adds on every side: 2^-20 of the largest coordinate magnitude of
-/// the triangle's exact box.
-float conservative_padding(const Aabb& exact) {
-    const glm::vec3 magnitude = glm::max(glm::abs(exact.lo), glm::abs(exact.hi));
-    return std::max({magnitude.x, magnitude.y, magnitude.z}) * 0x1p-20f;
-}
-
 constexpr std::uint32_t kMaxPieces = 1u << 16;  // per triangle
 constexpr int kGridLevels = 30;                 // below this, split at the middle
 // Only a triangle whose box's surface area is at least this many times the mean is cut. Pieces
@@ -202,11 +195,18 @@ std::vector<std::uint32_t> extra_pieces(std::span<const float> areas, std::size_
 
 }  // namespace
 
+std::size_t presplit_budget(std::size_t triangles, float extra) {
+    return std::size_t(std::max(0.0f, extra) * float(triangles));
+}
+
 PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb& grid) {
     const std::size_t count = areas.size();
-    const std::size_t budget = std::size_t(std::max(0.0f, extra) * float(count));
+    const std::size_t budget = presplit_budget(count, extra);
     if (budget == 0) return {};
-    double total = 0.0;  // in order: the same sum, so the same pieces, for any thread count
+    // Serial, so the same sum and the same pieces for any thread count; summed per block of
+    // 4096 and then over the blocks, the order in which a parallel pass summed them before
+    // (another order rounds differently and may move a triangle across min_area).
+    double total = 0.0;
     constexpr std::size_t kBlock = 4096;
     for (std::size_t begin = 0; begin < count; begin += kBlock) {
         double block = 0.0;

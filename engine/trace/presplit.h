@@ -27,6 +27,10 @@ inline float box_area(const Aabb& corners) {
     return area <= std::numeric_limits<float>::max() ? area : 0.0f;  // (and not NaN)
 }
 
+/// The most extra pieces a plan of `triangles` triangles makes: `extra` per triangle. A plan
+/// makes at most twice this many pieces in all (each cut triangle has at least one extra).
+std::size_t presplit_budget(std::size_t triangles, float extra);
+
 /// `areas[i]`: box_area(corners_bounds()) of triangle i. Serial: the same plan for any thread
 /// count.
 PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb& grid);

@@ -3,6 +3,8 @@
 // (3.2), binning (3.1) and the leaf rules. The recorded root node (TraceDetail::nodes) shows
 // what the recursion decided.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <functional>
 #include <random>
@@ -153,6 +155,42 @@ TEST(EdacrtDecisions, FilterSkippingFollowsEachRule) {
         // A skipped child gets all 100 rays; a filtered one those that hit its box.
         EXPECT_EQ(node.rays_passed[0], c.skip_left ? 100u : 60u);
         EXPECT_EQ(node.rays_passed[1], c.skip_right ? 100u : 40u);
+    }
+}
+
+/// Near the root a first child whose alpha says skip is filtered all the same when the rays
+/// its filter rejects (at least 512) make the second child's task: on more than one thread,
+/// with the second child split, and not for a smaller missed part.
+TEST(EdacrtDecisions, NearTheRootTheFirstChildIsFilteredForTheSecondChildsTask) {
+    const Scene scene = two_clusters();
+    struct Case {
+        int left, count, threads;
+        SecondChild second;
+        bool skip_first;
+    };
+    const Case cases[] = {
+        {1800, 2400, 1, SecondChild::split, true},        // one thread: no task
+        {1800, 2400, 2, SecondChild::split, false},       // 600 missed rays: a task
+        {1800, 2400, 2, SecondChild::after_first, true},  // no task is ever split off
+        {1700, 2200, 2, SecondChild::split, true},        // 500 missed rays: too few
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.threads) + " threads, " + std::to_string(c.left) + " of " +
+                     std::to_string(c.count) + " rays left");
+        EdacrtParams p = exact_root();
+        p.sample_threshold = 4000;
+        p.second_child = c.second;
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                        std::size_t(c.threads));
+        tbb::task_arena arena(c.threads);
+        TraceDetail detail;
+        arena.execute([&] { detail = trace_root(scene, down_rays(c.left, c.count), p); });
+        const NodeRecord& node = root(detail);
+        ASSERT_FALSE(node.leaf);
+        ASSERT_TRUE(node.left_first);  // alpha_L = 0.75 or 0.77 > 1/2: skip by Section 3.4
+        EXPECT_EQ(node.filter_skipped[0], c.skip_first);
+        EXPECT_FALSE(node.filter_skipped[1]);
+        EXPECT_EQ(node.rays_passed[0], std::uint32_t(c.skip_first ? c.count : c.left));
     }
 }
 

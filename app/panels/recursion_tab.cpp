@@ -82,11 +82,17 @@ void candidates_table(ViewerState& s, const NodeRecord& node, const EdacrtParams
         const float threshold = filter_skip_threshold(params, n, node.rays);
         char text[48] = "never (filter skipping off)";
         if (threshold <= 1.0f) std::snprintf(text, sizeof text, "%.3f", threshold);
+        // Near the root the first child is filtered whatever its alpha when the rays it
+        // rejects make a task for the second child (Recursion::forgoes_task).
+        const bool for_task = !node.filter_skipped[side] && estimated > threshold;
         ImGui::TextWrapped(
             "%s: alpha %s %.3f, true %.3f, error %.3f; skip above 1 - C_bv/(n_child C_child) "
             "= %s: %s",
             sides[side], source.c_str(), estimated, node.alpha_true[side], node.alpha_error(side),
-            text, node.filter_skipped[side] ? "passed unfiltered" : "filtered");
+            text,
+            node.filter_skipped[side] ? "passed unfiltered"
+            : for_task ? "filtered, so that the rays it rejects make the second child's task"
+                       : "filtered");
     }
 }
 

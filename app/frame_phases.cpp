@@ -25,7 +25,12 @@ void sync_worker(ViewerState& s, const std::shared_ptr<const Frame>& frame,
     }
     // Playing: the next frame once this one's first full pass is shown.
     advance_playback(s, s.frame && s.frame->request == request_id && !s.frame->preview, dt);
-    s.analysis_stale = s.analysis && analysis_stale(*s.analysis, s.submitted);
+    s.analysis_stale = s.analysis && analysis_stale(*s.analysis, s.submitted, s.batch);
+    // A batch other than the camera rays is recorded once the view has its first full pass (not
+    // while a drag makes request after request), and again for a new view.
+    const bool settled = s.frame && s.frame->request == request_id && !s.frame->preview;
+    if (s.batch != BatchId{} && settled && (!s.analysis || s.analysis_stale) && !s.analysis_running)
+        s.analysis_requested = true;
 }
 
 std::optional<RenderRequest> changed_request(ViewerState& s, int width, int height, bool first) {

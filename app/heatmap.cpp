@@ -5,10 +5,10 @@
 
 namespace edacrt::app {
 
-std::vector<float> heat_values(const TraceDetail& detail, View view) {
-    std::vector<float> values(detail.rays.size());
+std::vector<float> heat_values(std::span<const RayStats> pixels, View view) {
+    std::vector<float> values(pixels.size());
     for (std::size_t i = 0; i < values.size(); ++i) {
-        const RayStats& r = detail.rays[i];
+        const RayStats& r = pixels[i];
         switch (view) {
             case View::render:
                 break;

@@ -1,7 +1,8 @@
 #pragma once
-// Per-pixel heat maps of the camera rays' statistics (what a pixel cost), and the colour ramp
+// Per-pixel heat maps of a batch's statistics (what a pixel cost), and the colour ramp
 // the display shader and the legend share.
 #include <glm/vec3.hpp>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -10,7 +11,7 @@
 
 namespace edacrt::app {
 
-/// What the image shows: the render, or one per-pixel count of the first pass's camera rays.
+/// What the image shows: the render, or one per-pixel count of the analysed batch.
 /// The names are the script's (`view NAME`), the help the heat map tab's labels.
 enum class View { render, box_tests, triangle_tests, depth, order_misses };
 inline constexpr auto kViews =
@@ -20,8 +21,8 @@ inline constexpr auto kViews =
                               {View::depth, "depth", "recursion depth"},
                               {View::order_misses, "order", "traversal-order misses"}});
 
-/// One value per pixel (row by row from the top) of `view` from the per-ray statistics.
-std::vector<float> heat_values(const TraceDetail& detail, View view);
+/// One value per pixel (row by row from the top) of `view` from the per-pixel statistics.
+std::vector<float> heat_values(std::span<const RayStats> pixels, View view);
 
 /// Turbo (Mikhailov 2019, polynomial fit): a perceptual rainbow for t in [0, 1]. The display
 /// shader evaluates the same polynomial.

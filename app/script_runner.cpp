@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "trace/stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
 #include "util/printable.h"
@@ -77,6 +78,30 @@ std::string layout_json(const ViewerState& s) {
     return json.dump(2) + "\n";
 }
 
+std::string analysis_json(const ViewerState& s) {
+    const ShownBatch batch = shown_batch(s);
+    const std::string name = batch_name(s.batch);
+    if (!batch.detail) {
+        const Analysis* a = s.analysis.get();
+        if (s.batch != BatchId{} && a && a->batch == s.batch && !a->error.empty())
+            throw InputError("no statistics of batch " + name + ": " + a->error);
+        throw InputError("no statistics of batch " + name + " yet" +
+                         (s.batch == BatchId{} ? std::string(" (wait-spp 1 first)")
+                                               : std::string(" (wait-analysis first)")));
+    }
+    const bool crop = s.batch != BatchId{} &&
+                      (s.analysis->crop_w < batch.width || s.analysis->crop_h < batch.height);
+    const nlohmann::json json = {{"batch", name},
+                                 {"method", enum_name(kMethods, s.submitted.method)},
+                                 {"scene", s.scene ? s.scene->source : ""},
+                                 {"width", batch.width},
+                                 {"height", batch.height},
+                                 {"rays", batch.rays},
+                                 {"crop", crop},
+                                 {"detail", stats_json(*batch.detail)}};
+    return json_text(json);
+}
+
 bool ScriptRunner::waiting(bool done, const ScriptCommand& c, const std::string& what) {
     if (done) {
         waiting_ = false;
@@ -121,7 +146,8 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
          "an EDACRT flag "
          "without \"--\" (set filter-skip off), preset NAME, scene PATH, animate "
          "SPEC, or the "
-         "explorer's level, node, crop and step",
+         "explorer's level, node, crop and step, the analysed batch (batch camera|bounce:N|"
+         "shadow:N|ao)",
          [](R&, Step& st) {
              try {
                  apply_setting(st.s, st.c.args[0], st.c.args[1]);
@@ -285,6 +311,21 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
                  check_output_spares_inputs(st.s, path, "write-command");
                  create_parent_folders(path);
                  write_file(path, st.s.command_line + "\n", "command line");
+             } catch (const InputError& e) {
+                 st.fail(e.what());
+             }
+             return Next::go_on;
+         }},
+        {"write-analysis", 1, Args::words, "FILE",
+         "write what Statistics shows as JSON: the batch (`set batch camera|bounce:N|shadow:N|"
+         "ao`), its ray count and the per-level table (after wait-analysis for a batch other "
+         "than the camera rays)",
+         [](R&, Step& st) {
+             const std::string& path = st.c.args[0];
+             try {
+                 check_output_spares_inputs(st.s, path, "write-analysis");
+                 create_parent_folders(path);
+                 write_file(path, analysis_json(st.s), "analysis");
              } catch (const InputError& e) {
                  st.fail(e.what());
              }

@@ -46,6 +46,11 @@ const SetAction kSetActions[] = {
      [](ViewerState& s, const std::string& v) { s.explorer_node = whole_number("node", v); }},
     {"crop",
      [](ViewerState& s, const std::string& v) { s.explorer_crop = whole_number("crop", v) != 0; }},
+    {"batch",
+     [](ViewerState& s, const std::string& v) {
+         s.batch = parse_batch(v);
+         s.analysis_requested = s.batch != BatchId{};
+     }},
     {"step",
      [](ViewerState& s, const std::string& v) {
          s.step = whole_number("step", v);
@@ -105,10 +110,52 @@ std::vector<float> explorer_tint(const Analysis& a, std::int32_t node, std::int3
     return tint;
 }
 
-bool analysis_stale(const Analysis& a, const RenderRequest& r) {
+bool analysis_stale(const Analysis& a, const RenderRequest& r, BatchId batch) {
+    // The camera rays depend on the view, size and seed alone; later batches on every setting
+    // of the pass.
+    const bool camera = batch == BatchId{};
     return a.scene != r.scene || !(a.camera == r.camera) || a.width != r.settings.width ||
            a.height != r.settings.height || a.seed != r.settings.seed || a.method != r.method ||
-           !(a.params == r.params);
+           !(a.params == r.params) || !(a.batch == batch) ||
+           (!camera && !(a.settings == r.settings));
+}
+
+std::vector<RayStats> per_pixel_stats(std::span<const RayStats> rays,
+                                      std::span<const std::uint32_t> pixels, int width,
+                                      int height) {
+    std::vector<RayStats> out(std::size_t(width) * std::size_t(height));
+    for (std::size_t i = 0; i < rays.size() && i < pixels.size(); ++i) {
+        if (pixels[i] >= out.size()) continue;
+        RayStats& p = out[pixels[i]];
+        p.ray_box_tests += rays[i].ray_box_tests;
+        p.ray_triangle_tests += rays[i].ray_triangle_tests;
+        p.deepest_level = std::max(p.deepest_level, rays[i].deepest_level);
+        p.order_misses =
+            std::uint16_t(std::min(65535u, unsigned(p.order_misses) + rays[i].order_misses));
+    }
+    return out;
+}
+
+ShownBatch shown_batch(const ViewerState& s) {
+    ShownBatch b;
+    if (s.batch == BatchId{}) {
+        if (!s.frame || !s.frame->detail) return b;
+        b.detail = s.frame->detail.get();
+        b.source = s.frame->detail;
+        b.pixels = b.detail->rays;
+        b.width = s.frame->image.width;
+        b.height = s.frame->image.height;
+    } else {
+        const Analysis* a = s.analysis.get();
+        if (!a || !a->detail || s.analysis_stale || !(a->batch == s.batch)) return b;
+        b.detail = a->detail.get();
+        b.source = s.analysis;
+        b.pixels = a->pixel_stats;
+        b.width = a->width;
+        b.height = a->height;
+    }
+    b.rays = b.detail->rays.size();
+    return b;
 }
 
 }  // namespace edacrt::app

@@ -7,6 +7,7 @@
 #include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <numeric>
 
 #include "render/benchmark_rays.h"
 #include "render/default_camera.h"
@@ -141,16 +142,28 @@ bool fit_resolution(ViewerState& s, RenderRequest& request, const RenderRequest&
     }
 }
 
+namespace {
+
+/// Throws InputError when tracing `rays` rays (with statistics: `detail`) would take more than
+/// half the memory limit (the paused render keeps the rest): "N rays WHAT need ...; ADVICE".
+void check_trace_memory(std::uint64_t rays, bool detail, const std::string& what,
+                        const std::string& advice) {
+    const std::uint64_t need = rays * trace_bytes_per_ray(detail);
+    const MemoryLimit limit = memory_limit();
+    if (need > limit.bytes / 2)
+        throw InputError(std::to_string(rays) + " rays " + what + " need about " +
+                         std::to_string(need / 1'000'000) + " MB, more than half the " +
+                         std::to_string(limit.bytes / 1'000'000) + " MB of " + limit.source + "; " +
+                         advice);
+}
+
+}  // namespace
+
 std::vector<Ray> compare_rays(const Camera& camera, int width, int height, int spp,
                               std::uint32_t seed) {
     const std::uint64_t rays = std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(spp);
-    const std::uint64_t need = rays * trace_bytes_per_ray();
-    const MemoryLimit limit = memory_limit();
-    if (need > limit.bytes / 2)
-        throw InputError(std::to_string(rays) + " rays (" + std::to_string(spp) +
-                         " per pixel) need about " + std::to_string(need / 1'000'000) +
-                         " MB, more than half the " + std::to_string(limit.bytes / 1'000'000) +
-                         " MB of " + limit.source + "; choose fewer rays per pixel");
+    check_trace_memory(rays, false, "(" + std::to_string(spp) + " per pixel)",
+                       "choose fewer rays per pixel");
     const PinholeProjection projection(camera, width, height);
     if (spp == 1) return projection.pixel_centre_rays();
     return jittered_camera_rays(projection, width, height, spp, seed);
@@ -214,11 +227,11 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
     return out;
 }
 
-/// Records the recursion of the first pass's camera rays of the render in progress (the batch
-/// the statistics and heat maps show), or of a 64x64 crop of them at the image centre (a
-/// small batch to step through), following one pixel.
-std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel,
-                                        bool crop) {
+/// Records the recursion of one batch of the first pass of the render in progress (the camera
+/// rays, which the statistics and heat maps show, or another batch), or of its rays in a 64x64
+/// crop at the image centre (a small batch to step through), following one pixel.
+std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel, bool crop,
+                                        BatchId batch) {
     auto a = std::make_shared<Analysis>();
     a->scene = request.scene;
     a->camera = request.camera;
@@ -227,38 +240,59 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
     a->seed = request.settings.seed;
     a->method = request.method;
     a->params = request.params;
+    a->batch = batch;
+    a->settings = request.settings;
     a->pixel = pixel;
     a->crop_w = crop ? std::min(64, a->width) : a->width;
     a->crop_h = crop ? std::min(64, a->height) : a->height;
     a->crop_x = (a->width - a->crop_w) / 2;
     a->crop_y = (a->height - a->crop_h) / 2;
     try {
-        std::vector<Ray> rays = first_pass_camera_rays(request.camera, request.settings);
-        std::int64_t follow = -1;
-        if (crop) {
-            std::vector<Ray> batch;
-            for (int y = 0; y < a->crop_h; ++y)
-                for (int x = 0; x < a->crop_w; ++x) {
-                    const std::int64_t p = std::int64_t(a->crop_y + y) * a->width + (a->crop_x + x);
-                    if (p == pixel) follow = std::int64_t(batch.size());
-                    batch.push_back(rays[std::size_t(p)]);
-                }
-            rays = std::move(batch);
+        const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
+        tracer->set_scene(*request.scene);
+        CapturedBatch captured;
+        if (batch == BatchId{}) {
+            captured.rays = first_pass_camera_rays(request.camera, request.settings);
+            captured.pixels.resize(captured.rays.size());
+            std::iota(captured.pixels.begin(), captured.pixels.end(), 0u);
         } else {
-            follow = pixel;
+            captured =
+                capture_batch(*request.scene, *tracer, request.camera, request.settings, batch);
+            if (captured.rays.empty())
+                throw InputError("the first pass made no " + batch_name(batch) +
+                                 " rays: every path ended before");
         }
+        // The crop's rays, in the batch's order.
+        std::vector<Ray> rays;
+        for (std::size_t i = 0; i < captured.rays.size(); ++i) {
+            const std::uint32_t p = captured.pixels[i];
+            const int x = int(p % std::uint32_t(a->width)), y = int(p / std::uint32_t(a->width));
+            if (x < a->crop_x || y < a->crop_y || x >= a->crop_x + a->crop_w ||
+                y >= a->crop_y + a->crop_h)
+                continue;
+            rays.push_back(captured.rays[i]);
+            a->pixels.push_back(p);
+        }
+        captured = {};
+        if (rays.empty())
+            throw InputError("no " + batch_name(batch) + " rays in the 64x64 crop at the centre");
+        check_trace_memory(rays.size(), true, "of batch " + batch_name(batch),
+                           "lower the resolution or record the 64x64 crop");
+        const auto followed = std::find(a->pixels.begin(), a->pixels.end(), std::uint32_t(pixel));
+        const std::int64_t follow =
+            pixel >= 0 && followed != a->pixels.end() ? followed - a->pixels.begin() : -1;
         std::vector<Hit> hits(rays.size());
         auto detail = std::make_shared<TraceDetail>();
         detail->max_nodes = 300'000;
         detail->max_node_ray_ids = std::size_t(1) << 24;  // 64 MB
         detail->follow_ray = follow;
-        const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
-        tracer->set_scene(*request.scene);
-        tracer->trace(rays, hits, Query::closest, detail.get());
+        tracer->trace(rays, hits, batch_query(batch), detail.get());
         if (follow >= 0) {
             a->hit = hits[std::size_t(follow)];
             a->ray = rays[std::size_t(follow)];
+            a->followed = true;
         }
+        a->pixel_stats = per_pixel_stats(detail->rays, a->pixels, a->width, a->height);
         a->detail = std::move(detail);
     } catch (const std::exception& e) {
         a->error = e.what();

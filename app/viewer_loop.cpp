@@ -280,7 +280,7 @@ class Viewer {
             s_.analysis_requested = false;
             s_.analysis_running = true;
             jobs_.analysis = std::async(std::launch::async, analyse, submitted, s_.follow_pixel,
-                                        s_.explorer_crop);
+                                        s_.explorer_crop, s_.batch);
         }
         if (ready(jobs_.analysis)) {
             s_.analysis = jobs_.analysis.get();
@@ -312,14 +312,18 @@ class Viewer {
     /// each only when it changed.
     void upload() {
         Uploads& u = uploads_;
-        if (s_.frame && (s_.frame != u.frame || s_.view != u.view)) {
-            if (s_.frame != u.frame) display_.upload_render(s_.frame->image);
-            if (s_.view != View::render && s_.frame->detail) {
-                const std::vector<float> values = heat_values(*s_.frame->detail, s_.view);
-                u.heat_max = std::max(1.0f, *std::max_element(values.begin(), values.end()));
-                display_.upload_heat(values, s_.frame->image.width, s_.frame->image.height);
-            }
+        if (s_.frame && s_.frame != u.frame) {
+            display_.upload_render(s_.frame->image);
             u.frame = s_.frame;
+        }
+        // The heat map of the analysed batch: the frame's camera rays, or a recorded batch.
+        const ShownBatch batch = shown_batch(s_);
+        if (s_.view != View::render && batch.detail && !batch.pixels.empty() &&
+            (batch.source != u.heat_source || s_.view != u.view)) {
+            const std::vector<float> values = heat_values(batch.pixels, s_.view);
+            u.heat_max = std::max(1.0f, *std::max_element(values.begin(), values.end()));
+            display_.upload_heat(values, batch.width, batch.height);
+            u.heat_source = batch.source;
             u.view = s_.view;
         }
         // The selected node's pixels, and in step-through the hits found so far.
@@ -334,7 +338,8 @@ class Viewer {
                 u.tint_key = key;
             }
         }
-        u.heat = s_.view != View::render && s_.frame && s_.frame->detail && u.view == s_.view;
+        u.heat = s_.view != View::render && batch.detail && batch.source == u.heat_source &&
+                 u.view == s_.view;
     }
 
     /// Draw: the image in its region (the render has the region's aspect), the tint, and (in
@@ -407,9 +412,8 @@ class Viewer {
         const bool current = s_.frame && s_.frame->request == request_id_ && !s_.frame->preview;
         const int shown_spp = settled && current ? s_.frame->spp : 0;
         // The image region shows the view asked for of the newest pass received.
-        const bool image_current = current && uploads_.frame == s_.frame &&
-                                   uploads_.view == s_.view &&
-                                   (s_.view == View::render || uploads_.heat);
+        const bool image_current =
+            current && uploads_.frame == s_.frame && (s_.view == View::render || uploads_.heat);
         const PixelRect& region = screen_.region;
         try {
             if (script_) {
@@ -478,7 +482,8 @@ class Viewer {
     // upload: what the textures hold.
     struct Uploads {
         std::shared_ptr<const Frame> frame;
-        View view = View::render;
+        View view = View::render;                 // of the heat map
+        std::shared_ptr<const void> heat_source;  // ShownBatch::source of the heat map
         float heat_max = 1.0f;
         bool heat = false;  // the heat map of the view asked for is uploaded
         bool tint = false;  // the explorer's tint is shown

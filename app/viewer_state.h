@@ -2,6 +2,7 @@
 // What the panels read and edit. The UI edits `ui`; the viewer turns a changed `ui` (or camera)
 // into a new RenderRequest for the worker.
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "key_presses.h"
 #include "layout.h"
 #include "orbit_camera.h"
+#include "render/batch_capture.h"
 #include "render/film.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
@@ -50,9 +52,9 @@ struct MethodTotals {
     int spp = 1;  // camera rays per pixel
 };
 
-/// A recorded trace of the first pass's camera rays (the batch the statistics and heat maps
-/// show): the recursion's nodes and (for the traversal debugger) one pixel's path. Computed off
-/// the UI thread on request.
+/// A recorded trace of one batch of the first pass (ViewerState::batch: the camera rays, a
+/// bounce, its shadow rays or the AO rays): the recursion's nodes, per-pixel counts and (for
+/// the traversal debugger) one pixel's ray. Computed off the UI thread on request.
 struct Analysis {
     std::shared_ptr<const TraceDetail> detail;
     std::shared_ptr<const Scene> scene;
@@ -61,20 +63,41 @@ struct Analysis {
     std::uint32_t seed = 0;
     Method method = Method::edacrt;
     EdacrtParams params;
+    BatchId batch;
+    RenderSettings settings;  // of the render whose first pass made the batch
     std::int64_t pixel = -1;  // the followed pixel (y * width + x), or -1
-    Ray ray;                  // its camera ray
-    Hit hit;                  // its closest hit
+    Ray ray;                  // its first ray in the batch
+    Hit hit;                  // that ray's hit (closest, or any for shadow and AO rays)
+    bool followed = false;    // the pixel has a ray in the batch
     std::string error;
-    // The batch: the camera rays of this crop of the image (all of it, or a small batch to
-    // step through), row by row.
+    // The batch's rays in this crop of the image (all of it, or 64x64 at the centre to step
+    // through), in the order the renderer traced them, and the image pixel (y * width + x) of
+    // each.
     int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;
+    std::vector<std::uint32_t> pixels;
+    // Per pixel (width * height), its rays' counts summed (deepest level: the largest): the
+    // heat maps of the batch.
+    std::vector<RayStats> pixel_stats;
 
     /// The image pixel (y * width + x) of ray i of the batch.
-    std::size_t pixel_of(std::size_t ray) const {
-        return (std::size_t(crop_y) + ray / std::size_t(crop_w)) * std::size_t(width) +
-               std::size_t(crop_x) + ray % std::size_t(crop_w);
-    }
+    std::size_t pixel_of(std::size_t ray) const { return pixels[ray]; }
 };
+
+/// What the analysis tabs show of ViewerState::batch: its per-level statistics and per-pixel
+/// counts, from the render's first pass (the camera rays) or from the analysis (another batch).
+/// `detail` is null while there is none to show.
+struct ShownBatch {
+    const TraceDetail* detail = nullptr;
+    std::span<const RayStats> pixels;  // width * height
+    int width = 0, height = 0;
+    std::size_t rays = 0;
+    std::shared_ptr<const void> source;  // changes when the figures do (the heat map's upload)
+};
+
+/// Per pixel of a width x height image, the counts of the rays whose pixels[] it is: summed,
+/// the deepest level the largest.
+std::vector<RayStats> per_pixel_stats(std::span<const RayStats> rays,
+                                      std::span<const std::uint32_t> pixels, int width, int height);
 
 /// The RMS difference of two images of the same size, relative to the RMS of `b` (0 when b
 /// is black); the change a pass made to the mean.
@@ -188,6 +211,9 @@ struct ViewerState {
     std::string bookmark_name;
     std::string command_line;  // the `edacrt render` command of the view
 
+    // The batch Statistics, Heat map, Recursion and Traversal analyse (camera: the render's own
+    // statistics; another: recorded by the analysis job).
+    BatchId batch;
     // Recursion explorer and traversal debugger.
     std::shared_ptr<const Analysis> analysis;
     bool analysis_running = false;
@@ -234,11 +260,15 @@ std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info);
 
 /// Applies a script's `set KEY VALUE`: a setting of viewer_settings() (app/settings_table.h),
 /// an EDACRT parameter (its flag without "--"), a preset, or an action (scene, animate, the
-/// explorer's level, node, crop and step). Throws InputError.
+/// explorer's level, node, crop and step, the analysed batch). Throws InputError.
 void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
 
+/// The batch the analysis tabs show (ShownBatch): the first pass's camera rays from the shown
+/// frame, another batch from a current analysis of it.
+ShownBatch shown_batch(const ViewerState& state);
+
 /// True when the recording was made for another scene, view, size, seed, method or parameters
-/// than the render in progress.
-bool analysis_stale(const Analysis& analysis, const RenderRequest& submitted);
+/// than the render in progress, or another batch than `batch` (of other render settings).
+bool analysis_stale(const Analysis& analysis, const RenderRequest& submitted, BatchId batch);
 
 }  // namespace edacrt::app

@@ -8,7 +8,7 @@
 #include "enum_flags.h"
 #include "progress.h"
 #include "scene/builtin_scenes.h"
-#include "stats_json.h"
+#include "trace/stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
 #include "util/printable.h"

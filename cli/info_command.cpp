@@ -13,7 +13,7 @@
 #include "render/render_memory.h"
 #include "render/scene_summary.h"
 #include "scene/text_scan.h"
-#include "stats_json.h"
+#include "trace/stats_json.h"
 #include "trace/tracer.h"
 #include "util/error.h"
 #include "util/printable.h"

@@ -23,7 +23,7 @@
 #include "render/render_metadata.h"
 #include "render/renderer.h"
 #include "render/sampler.h"
-#include "stats_json.h"
+#include "trace/stats_json.h"
 #include "util/error.h"
 #include "util/output_file.h"
 
@@ -269,7 +269,7 @@ int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSett
             std::vector<Hit> hits(rays.size());
             tracer.trace(rays, hits, Query::closest, &detail);
         }
-        stats["detail"] = to_json(detail);
+        stats["detail"] = stats_json(detail);
         stats["detail"]["from"] = "an extra, untimed trace of one camera ray per pixel centre";
     }
     write_stats(o.common, stats);

@@ -6,8 +6,8 @@
 #include "commands.h"
 #include "common_options.h"
 #include "progress.h"
-#include "stats_json.h"
 #include "trace/ray_file.h"
+#include "trace/stats_json.h"
 
 namespace edacrt::cli {
 namespace {
@@ -56,27 +56,27 @@ void run(const TraceOptions& o) {
               << hit_count << " hits; prepare " << prepare_seconds << " s; " << stats.ray_box_tests
               << " ray-box and " << stats.ray_triangle_tests << " ray-triangle tests\n";
 
-    nlohmann::json stats_json = {{"command", "trace"},
-                                 {"scene", scene.source},
-                                 {"triangles", scene.triangle_count()},
-                                 {"method", method},
-                                 {"embree_mode", enum_name(kEmbreeModes, o.common.embree_mode)},
-                                 {"query", enum_name(kQueries, query)},
-                                 {"rays", stats.rays},
-                                 {"hits", hit_count},
-                                 {"ray_box_tests", stats.ray_box_tests},
-                                 {"ray_triangle_tests", stats.ray_triangle_tests},
-                                 {"prepare_seconds", prepare_seconds},
-                                 {"trace_seconds", trace_seconds},
-                                 {"mrays_per_second", mrays}};
+    nlohmann::json report = {{"command", "trace"},
+                             {"scene", scene.source},
+                             {"triangles", scene.triangle_count()},
+                             {"method", method},
+                             {"embree_mode", enum_name(kEmbreeModes, o.common.embree_mode)},
+                             {"query", enum_name(kQueries, query)},
+                             {"rays", stats.rays},
+                             {"hits", hit_count},
+                             {"ray_box_tests", stats.ray_box_tests},
+                             {"ray_triangle_tests", stats.ray_triangle_tests},
+                             {"prepare_seconds", prepare_seconds},
+                             {"trace_seconds", trace_seconds},
+                             {"mrays_per_second", mrays}};
     if (!o.common.stats_path.empty()) {
         TraceDetail detail;
         std::vector<Hit> again(rays.size());
         tracer->trace(rays, again, query, &detail);
-        stats_json["detail"] = to_json(detail);
-        stats_json["detail"]["from"] = "an extra, untimed pass of the same rays";
+        report["detail"] = stats_json(detail);
+        report["detail"]["from"] = "an extra, untimed pass of the same rays";
     }
-    write_stats(o.common, stats_json);
+    write_stats(o.common, report);
 }
 
 }  // namespace

@@ -302,10 +302,10 @@ TEST(OrbitCamera, ScriptLooksAndOrbitsAboutAPoint) {
 TEST(HeatMap, ValuesComeFromThePerRayStatistics) {
     TraceDetail detail;
     detail.rays = {{3, 4, 5, 6}, {7, 8, 9, 10}};
-    EXPECT_EQ(heat_values(detail, View::box_tests), (std::vector<float>{3, 7}));
-    EXPECT_EQ(heat_values(detail, View::triangle_tests), (std::vector<float>{4, 8}));
-    EXPECT_EQ(heat_values(detail, View::depth), (std::vector<float>{5, 9}));
-    EXPECT_EQ(heat_values(detail, View::order_misses), (std::vector<float>{6, 10}));
+    EXPECT_EQ(heat_values(detail.rays, View::box_tests), (std::vector<float>{3, 7}));
+    EXPECT_EQ(heat_values(detail.rays, View::triangle_tests), (std::vector<float>{4, 8}));
+    EXPECT_EQ(heat_values(detail.rays, View::depth), (std::vector<float>{5, 9}));
+    EXPECT_EQ(heat_values(detail.rays, View::order_misses), (std::vector<float>{6, 10}));
     // Turbo runs from dark blue through green to dark red.
     EXPECT_GT(turbo(0.0f).z, turbo(0.0f).y);
     EXPECT_GT(turbo(0.5f).y, turbo(0.5f).z);

@@ -233,29 +233,29 @@ TEST(Analysis, StaleOnceTheViewSceneSizeSeedMethodOrParametersChange) {
     a.camera = r.camera;
     a.width = 64;
     a.height = 48;
-    EXPECT_FALSE(analysis_stale(a, r));
+    EXPECT_FALSE(analysis_stale(a, r, BatchId{}));
     auto moved = r;
     moved.camera.eye.x += 0.01f;
-    EXPECT_TRUE(analysis_stale(a, moved));
+    EXPECT_TRUE(analysis_stale(a, moved, BatchId{}));
     auto resized = r;
     resized.settings.width = 65;
-    EXPECT_TRUE(analysis_stale(a, resized));
+    EXPECT_TRUE(analysis_stale(a, resized, BatchId{}));
     auto reseeded = r;
     reseeded.settings.seed = 1;
-    EXPECT_TRUE(analysis_stale(a, reseeded));
+    EXPECT_TRUE(analysis_stale(a, reseeded, BatchId{}));
     auto other = r;
     other.method = Method::dacrt;
-    EXPECT_TRUE(analysis_stale(a, other));
+    EXPECT_TRUE(analysis_stale(a, other, BatchId{}));
     auto params = r;
     params.params.bins = 5;
-    EXPECT_TRUE(analysis_stale(a, params));
+    EXPECT_TRUE(analysis_stale(a, params, BatchId{}));
     auto rescened = r;
     rescened.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
-    EXPECT_TRUE(analysis_stale(a, rescened));
+    EXPECT_TRUE(analysis_stale(a, rescened, BatchId{}));
     // Only what defines the batch: more samples do not make it stale.
     auto more = r;
     more.spp_target = 99;
-    EXPECT_FALSE(analysis_stale(a, more));
+    EXPECT_FALSE(analysis_stale(a, more, BatchId{}));
 }
 
 TEST(Analysis, TheTintMarksANodesPixelsAndTheHitsFoundSoFar) {
@@ -273,6 +273,7 @@ TEST(Analysis, TheTintMarksANodesPixelsAndTheHitsFoundSoFar) {
     a.height = 3;
     a.crop_x = a.crop_y = 1;
     a.crop_w = a.crop_h = 2;
+    a.pixels = {5, 6, 9, 10};
     EXPECT_EQ(a.pixel_of(3), 10u);
     const auto tint = explorer_tint(a, 1, 1);
     const std::vector<float> expected = {0, 0, 0, 0, 0, 0, 1, 0, 0, 2, 1, 0};

@@ -413,6 +413,57 @@ TEST(ViewerScreenshots, AScriptSavesABookmarkOrFailsAtItsLine) {
         << failed.output;
 }
 
+// A bounce batch end to end: `set batch` records it, the heat map shows it, the debugger follows
+// the pixel's bounce ray, write-analysis writes the Statistics tab's figures; a batch the pass
+// does not trace fails the script at its line.
+TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+    const std::string script =
+        "set max-depth 3\nwait-spp 1\nwrite-analysis " + file("camera.json") +
+        "\nset batch bounce:1\nwait-analysis\nwrite-analysis " + file("bounce.json") +
+        "\nview box\ntab Heat_map\nwait-settled\nscreenshot " + file("heat.png") +
+        "\ntab Traversal\npick-image 0.5 0.5\nwait-analysis\nwait-settled\nlayout " +
+        file("layout.json") + "\nset batch shadow:0\nwait-analysis\nwrite-analysis " +
+        file("shadow.json") + "\nset batch bounce:4\nwait-analysis\nwrite-analysis " +
+        file("none.json") + "\n";
+    const auto result = run_viewer_script(dir.path(), script, 1280, 800, "builtin:cornell");
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("script line 21: no statistics of batch bounce:4: no batch "
+                                 "bounce:4: paths end after max-depth 3 bounces"),
+              std::string::npos)
+        << result.output;
+    const auto read = [&](const std::string& name) {
+        std::ifstream in(file(name));
+        return nlohmann::json::parse(in);
+    };
+    const nlohmann::json camera = read("camera.json"), bounce = read("bounce.json"),
+                         shadow = read("shadow.json");
+    EXPECT_EQ(camera["batch"], "camera");
+    EXPECT_EQ(bounce["batch"], "bounce:1");
+    EXPECT_EQ(shadow["batch"], "shadow:0");
+    const std::uint64_t pixels =
+        camera["width"].get<std::uint64_t>() * camera["height"].get<std::uint64_t>();
+    EXPECT_EQ(camera["rays"], pixels);
+    // The Cornell box is open at the front: some paths leave before bounce 1.
+    EXPECT_GT(bounce["rays"].get<std::uint64_t>(), pixels / 4);
+    EXPECT_LT(bounce["rays"].get<std::uint64_t>(), pixels);
+    EXPECT_GT(shadow["rays"].get<std::uint64_t>(), 0u);
+    for (const nlohmann::json* j : {&camera, &bounce, &shadow}) {
+        EXPECT_FALSE((*j)["detail"]["levels"].empty());
+        EXPECT_EQ((*j)["detail"]["per_ray"]["rays"], (*j)["rays"]);
+    }
+    // Incoherent bounce rays cost more tests per ray than camera rays.
+    EXPECT_GT(bounce["detail"]["per_ray"]["ray_box_tests_mean"].get<double>(),
+              camera["detail"]["per_ray"]["ray_box_tests_mean"].get<double>());
+    EXPECT_TRUE(std::filesystem::exists(file("heat.png")));
+    std::ifstream layout(file("layout.json"));
+    const nlohmann::json drawn = nlohmann::json::parse(layout);
+    EXPECT_TRUE(drawn["items"].contains("Analysis/batch")) << drawn.dump();
+    EXPECT_TRUE(drawn["errors_shown"].empty()) << drawn.dump();
+}
+
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const auto dir = std::filesystem::temp_directory_path() /

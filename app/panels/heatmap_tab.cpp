@@ -10,7 +10,7 @@
 namespace edacrt::app {
 
 void draw_heatmap_tab(ViewerState& s, float heat_max) {
-    ImGui::TextDisabled("per pixel, the first pass's camera rays (the Statistics tab's batch)");
+    ImGui::TextDisabled("per pixel, the batch's rays summed (the Statistics tab's batch)");
     for (const EnumEntry<View>& view : kViews) {
         if (ImGui::RadioButton(std::string(view.help).c_str(), s.view == view.value))
             s.view = view.value;
@@ -44,15 +44,15 @@ void draw_heatmap_tab(ViewerState& s, float heat_max) {
 void draw_heat_readout(const ViewerState& s) {
     const ImGuiIO& io = ImGui::GetIO();
     const Rect& r = s.layout.image;
-    if (s.view == View::render || io.WantCaptureMouse || !s.frame || !s.frame->detail || r.empty())
-        return;
-    const int w = s.frame->image.width, h = s.frame->image.height;
+    const ShownBatch batch = shown_batch(s);
+    if (s.view == View::render || io.WantCaptureMouse || !batch.detail || r.empty()) return;
+    const int w = batch.width, h = batch.height;
     const int x = int(std::floor((io.MousePos.x - r.x) / r.w * float(w)));
     const int y = int(std::floor((io.MousePos.y - r.y) / r.h * float(h)));
     if (x < 0 || y < 0 || x >= w || y >= h ||
-        std::size_t(y) * std::size_t(w) + std::size_t(x) >= s.frame->detail->rays.size())
+        std::size_t(y) * std::size_t(w) + std::size_t(x) >= batch.pixels.size())
         return;
-    const RayStats& ray = s.frame->detail->rays[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+    const RayStats& ray = batch.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)];
     ImGui::SetTooltip("pixel (%d, %d)\n%u box tests, %u triangle tests\ndepth %u, %u order misses",
                       x, y, ray.ray_box_tests, ray.ray_triangle_tests, unsigned(ray.deepest_level),
                       unsigned(ray.order_misses));

@@ -141,18 +141,22 @@ void draw_analysis(ViewerState& s, float heat_max) {
     take_clipped_cells();
     if (open && ImGui::BeginTabBar("analysis")) {
         if (tab(s, "Statistics")) {
+            draw_batch_chooser(s);
             draw_stats_tab(s);
             ImGui::EndTabItem();
         }
         if (tab(s, "Heat map")) {
+            draw_batch_chooser(s);
             draw_heatmap_tab(s, heat_max);
             ImGui::EndTabItem();
         }
         if (tab(s, "Recursion")) {
+            draw_batch_chooser(s);
             draw_recursion_tab(s);
             ImGui::EndTabItem();
         }
         if (tab(s, "Traversal")) {
+            draw_batch_chooser(s);
             draw_traversal_tab(s);
             ImGui::EndTabItem();
         }

@@ -31,6 +31,9 @@ void draw_timeline(ViewerState& state);
 void draw_animation_settings(ViewerState& state);
 /// The "compare methods" button and the table of every method's update and trace times.
 void draw_comparison(ViewerState& state);
+/// The batch Statistics, Heat map, Recursion and Traversal analyse: a combo of the pass's
+/// batches, the one before and after, and whether it is recorded yet.
+void draw_batch_chooser(ViewerState& state);
 /// The value under the cursor while a heat map is shown (a tooltip over the image).
 void draw_heat_readout(const ViewerState& state);
 

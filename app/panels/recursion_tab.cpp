@@ -158,11 +158,11 @@ void draw_recursion_tab(ViewerState& s) {
         ImGui::SameLine();
         if (ImGui::SmallButton("re-record")) s.analysis_requested = true;
     }
-    ImGui::TextDisabled("recorded: %zu camera rays of the first pass (%s), %zu nodes",
-                        a->detail->rays.size(),
+    ImGui::TextDisabled("recorded: %zu %s rays of the first pass (%s), %zu nodes",
+                        a->detail->rays.size(), batch_name(a->batch).c_str(),
                         a->crop_w == a->width && a->crop_h == a->height
                             ? "the whole view, the Statistics tab's batch"
-                            : "a 64x64 crop at the centre, a batch of its own",
+                            : "those in a 64x64 crop at the centre, a batch of their own",
                         a->detail->nodes.size());
     step_through(s, *a);
     const auto& nodes = a->detail->nodes;

@@ -153,9 +153,11 @@ void draw_comparison(ViewerState& s) {
 }
 
 void draw_stats_tab(ViewerState& s) {
-    const TraceDetail* detail = s.frame && s.frame->detail ? s.frame->detail.get() : nullptr;
+    const ShownBatch batch = shown_batch(s);
+    const TraceDetail* detail = batch.detail;
     if (!detail) {
-        ImGui::TextDisabled("waiting for the first full-resolution pass");
+        ImGui::TextDisabled(s.batch == BatchId{} ? "waiting for the first full-resolution pass"
+                                                 : "waiting for the batch's recording");
         draw_comparison(s);
         return;
     }
@@ -166,9 +168,17 @@ void draw_stats_tab(ViewerState& s) {
         tri += r.ray_triangle_tests;
     }
     const double rays = double(std::max<std::size_t>(detail->rays.size(), 1));
-    ImGui::Text("%s: the first pass's %zu camera rays (%dx%d, 1 per pixel), one batch",
-                std::string(enum_name(kMethods, s.submitted.method)).c_str(), detail->rays.size(),
-                s.frame->image.width, s.frame->image.height);
+    if (s.batch == BatchId{})
+        ImGui::Text("%s: the first pass's %zu camera rays (%dx%d, 1 per pixel), one batch",
+                    std::string(enum_name(kMethods, s.submitted.method)).c_str(),
+                    detail->rays.size(), batch.width, batch.height);
+    else
+        ImGui::Text("%s: the first pass's %zu %s rays (%dx%d%s), one batch",
+                    std::string(enum_name(kMethods, s.submitted.method)).c_str(),
+                    detail->rays.size(), batch_name(s.batch).c_str(), batch.width, batch.height,
+                    s.analysis->crop_w < batch.width || s.analysis->crop_h < batch.height
+                        ? ", the 64x64 crop"
+                        : "");
     ImGui::Text("%.1f ray-box and %.1f ray-triangle tests per ray", double(box) / rays,
                 double(tri) / rays);
     if (!levels.empty())

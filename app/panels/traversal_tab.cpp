@@ -1,6 +1,8 @@
-// Traversal tab, the debugger: click a pixel to follow its camera ray through the recursion: the
-// nodes it entered, which child went first and whether that was the one holding the final hit,
-// where it was filtered out or passed down unfiltered, and the leaf that produced the hit.
+// Traversal tab, the debugger: click a pixel to follow its ray in the chosen batch (the camera
+// ray, a bounce, a shadow ray: the batch chooser's arrows step along the pixel's path) through
+// the recursion: the nodes it entered, which child went first and whether that was the one
+// holding the final hit, where it was filtered out or passed down unfiltered, and the leaf that
+// produced the hit.
 #include <imgui.h>
 
 #include <algorithm>
@@ -27,11 +29,22 @@ void draw_traversal_tab(ViewerState& s) {
     const auto& nodes = a->detail->nodes;
     const auto& visits = a->detail->follow;
     const int x = int(a->pixel % a->width), y = int(a->pixel / a->width);
-    ImGui::Text("pixel (%d, %d): %s", x, y,
-                a->hit.hit() ? ("triangle " + std::to_string(a->hit.prim) +
-                                " at t = " + std::to_string(a->hit.t))
-                                   .c_str()
-                             : "no hit");
+    if (!a->followed) {
+        // Outside the crop, or the pixel's path made no ray of this batch.
+        const bool in_crop = x >= a->crop_x && y >= a->crop_y && x < a->crop_x + a->crop_w &&
+                             y < a->crop_y + a->crop_h;
+        ImGui::Text("pixel (%d, %d): no %s ray %s", x, y, batch_name(a->batch).c_str(),
+                    in_crop ? "(its path ended before)"
+                            : "in the recorded batch: it lies outside the 64x64 crop");
+        return;
+    }
+    const bool any = batch_query(a->batch) == Query::any;
+    ImGui::Text(
+        "pixel (%d, %d), its %s ray: %s", x, y, batch_name(a->batch).c_str(),
+        !a->hit.hit() ? (any ? "unoccluded" : "no hit")
+        : any         ? ("occluded by triangle " + std::to_string(a->hit.prim)).c_str()
+              : ("triangle " + std::to_string(a->hit.prim) + " at t = " + std::to_string(a->hit.t))
+                    .c_str());
     if (visits.empty()) {
         ImGui::TextDisabled("(%s records no recursion, or the ray missed the scene's box)",
                             std::string(enum_name(kMethods, a->method)).c_str());

@@ -14,6 +14,7 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
     wf.camera_rays(begin, end, rays);
     std::vector<Hit>& hits = b.hits;
     hits.assign(rays.size(), Hit{});
+    wf.offer({}, rays, [&](std::size_t i) { return begin + i; });
     if (!wf.trace(rays, hits, Query::closest)) return false;
 
     // Compact the hits; their AO rays are consecutive, ao_samples per hit.
@@ -40,6 +41,8 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
         });
     std::vector<Hit>& ao_hits = b.secondary_hits;
     ao_hits.assign(ao_rays.size(), Hit{});
+    wf.offer({BatchId::Kind::ao, 0}, ao_rays,
+             [&](std::size_t j) { return begin + hit_pixels[j / n]; });
     if (!wf.trace(ao_rays, ao_hits, Query::any)) return false;
 
     std::fill(radiance.begin(), radiance.end(), glm::vec3(0.0f));

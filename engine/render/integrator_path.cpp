@@ -46,6 +46,8 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
     std::vector<std::uint8_t>&alive = b.alive, &has_shadow = b.has_shadow;
     for (int depth = 0; !paths.empty(); ++depth) {
         hits.resize(rays.size());
+        const BatchId id{depth == 0 ? BatchId::Kind::camera : BatchId::Kind::bounce, depth};
+        wf.offer(id, rays, [&](std::size_t i) { return begin + paths[i].pixel; });
         if (!wf.trace(rays, hits, Query::closest)) return false;
         const std::size_t n = rays.size();
         next_rays.resize(n);
@@ -137,6 +139,8 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
             for (std::size_t k = 0; k < batch.size(); ++k) batch[k] = shadow_rays[shadow_index[k]];
             std::vector<Hit>& occluders = b.secondary_hits;
             occluders.assign(batch.size(), Hit{});
+            wf.offer({BatchId::Kind::shadow, depth}, batch,
+                     [&](std::size_t k) { return begin + paths[shadow_index[k]].pixel; });
             if (!wf.trace(batch, occluders, Query::any)) return false;
             for (std::size_t k = 0; k < batch.size(); ++k)
                 if (!occluders[k].hit())

@@ -35,7 +35,7 @@ Renderer::Renderer(const Scene& scene, Tracer& tracer, const Camera& camera,
                std::size_t(settings.samples_per_pass)) {}
 
 bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary_detail,
-                           int samples) {
+                           int samples, CapturedBatch* capture) {
     if (samples == 0) samples = settings_.samples_per_pass;
     if (samples < 1 || samples > settings_.samples_per_pass)
         throw std::invalid_argument("Renderer::render_pass: " + std::to_string(samples) +
@@ -45,7 +45,7 @@ bool Renderer::render_pass(const std::atomic<bool>* cancel, TraceDetail* primary
     PassStats stats;
     const std::size_t pixels = std::size_t(settings_.width) * std::size_t(settings_.height);
     Wavefront wf{*scene_, shading_, tracer_, settings_, projection_, std::uint32_t(film_.passes()),
-                 pixels,  cancel,   stats,   buffers_};
+                 pixels,  cancel,   stats,   buffers_,  capture};
     const std::size_t paths = pixels * std::size_t(samples);
     const std::size_t wave = wavefront_paths(settings_, paths);
     for (std::size_t begin = 0; begin < paths; begin += wave) {

@@ -28,10 +28,11 @@ class Renderer {
     /// most a pass may take), into the film. Returns false, leaving the film as it was, when
     /// `cancel` became true (it is checked before every batch). With `primary_detail`, also
     /// records the per-level and per-pixel statistics of the first sample's camera rays
-    /// (untimed). The image depends on the samples rendered so far, not on how passes group
-    /// them.
+    /// (untimed). With `capture`, also takes the batch it names (capture_batch()). The image
+    /// depends on the samples rendered so far, not on how passes group them.
     bool render_pass(const std::atomic<bool>* cancel = nullptr,
-                     TraceDetail* primary_detail = nullptr, int samples = 0);
+                     TraceDetail* primary_detail = nullptr, int samples = 0,
+                     CapturedBatch* capture = nullptr);
 
     /// Starts over (the next pass is sample 0 again).
     void reset();

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "render/batch_capture.h"
 #include "render/render_settings.h"
 #include "render/sampler.h"
 #include "render/shading_scene.h"
@@ -68,6 +69,7 @@ struct Wavefront {
     const std::atomic<bool>* cancel;  // checked before every batch
     PassStats& stats;
     WavefrontBuffers& buffers;
+    CapturedBatch* capture = nullptr;  // takes the batch it names (capture_batch())
 
     bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
 
@@ -79,6 +81,16 @@ struct Wavefront {
 
     /// Camera rays of paths [begin, end), jittered within the pixel (sample pair 0).
     void camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>& rays) const;
+
+    /// Gives `rays` to the capture if they are the batch it takes; path_of(i) is the pass's path
+    /// number of ray i (its pixel: path % pixels).
+    template <class PathOf>
+    void offer(BatchId id, std::span<const Ray> rays, PathOf path_of) const {
+        if (!capture || !(capture->id == id)) return;
+        capture->rays.insert(capture->rays.end(), rays.begin(), rays.end());
+        for (std::size_t i = 0; i < rays.size(); ++i)
+            capture->pixels.push_back(std::uint32_t(path_of(i) % pixels));
+    }
 
     /// Traces one batch (timed). Returns false, tracing nothing, when cancelled.
     bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);

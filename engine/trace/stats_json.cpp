@@ -1,10 +1,10 @@
-#include "stats_json.h"
+#include "trace/stats_json.h"
 
 #include <algorithm>
 #include <iterator>
 #include <vector>
 
-namespace edacrt::cli {
+namespace edacrt {
 
 namespace {
 
@@ -26,7 +26,7 @@ nlohmann::json alpha_errors(const LevelStats& l) {
 
 }  // namespace
 
-nlohmann::json to_json(const TraceDetail& detail) {
+nlohmann::json stats_json(const TraceDetail& detail) {
     nlohmann::json levels = nlohmann::json::array();
     for (std::size_t d = 0; d < detail.levels.size(); ++d) {
         const LevelStats& l = detail.levels[d];
@@ -105,4 +105,4 @@ std::string json_text(const nlohmann::json& json) {
     return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace edacrt::cli
+}  // namespace edacrt

@@ -159,8 +159,8 @@ TEST(EdacrtDecisions, FilterSkippingFollowsEachRule) {
 }
 
 /// Near the root a first child whose alpha says skip is filtered all the same when the rays
-/// its filter rejects (at least 512) make the second child's task: on more than one thread,
-/// with the second child split, and not for a smaller missed part.
+/// its filter rejects (at least 512, and a fifth of the node's) make the second child's task:
+/// on more than one thread, with the second child split, and not for a smaller missed part.
 TEST(EdacrtDecisions, NearTheRootTheFirstChildIsFilteredForTheSecondChildsTask) {
     const Scene scene = two_clusters();
     struct Case {
@@ -173,6 +173,7 @@ TEST(EdacrtDecisions, NearTheRootTheFirstChildIsFilteredForTheSecondChildsTask) 
         {1800, 2400, 2, SecondChild::split, false},       // 600 missed rays: a task
         {1800, 2400, 2, SecondChild::after_first, true},  // no task is ever split off
         {1700, 2200, 2, SecondChild::split, true},        // 500 missed rays: too few
+        {2450, 3000, 2, SecondChild::split, true},        // 550, but under a fifth
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.threads) + " threads, " + std::to_string(c.left) + " of " +
@@ -187,7 +188,7 @@ TEST(EdacrtDecisions, NearTheRootTheFirstChildIsFilteredForTheSecondChildsTask) 
         arena.execute([&] { detail = trace_root(scene, down_rays(c.left, c.count), p); });
         const NodeRecord& node = root(detail);
         ASSERT_FALSE(node.leaf);
-        ASSERT_TRUE(node.left_first);  // alpha_L = 0.75 or 0.77 > 1/2: skip by Section 3.4
+        ASSERT_TRUE(node.left_first);  // alpha_L = 0.75 to 0.82 > 1/2: skip by Section 3.4
         EXPECT_EQ(node.filter_skipped[0], c.skip_first);
         EXPECT_FALSE(node.filter_skipped[1]);
         EXPECT_EQ(node.rays_passed[0], std::uint32_t(c.skip_first ? c.count : c.left));

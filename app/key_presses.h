@@ -13,11 +13,12 @@ class KeyPresses {
     /// A press of `key` (a GLFW key code) with the modifier bits `mods`, or its auto-repeat.
     void press(int key, int mods, bool repeat) { presses_.push_back({key, mods, repeat}); }
 
-    /// How often `key` was pressed since clear() with at least the modifiers `mods` held;
-    /// auto-repeats count too when `repeats`.
-    int count(int key, int mods = 0, bool repeats = false) const {
+    /// How often `key` was pressed since clear() with at least the modifiers `mods` held and
+    /// none of `without`; auto-repeats count too when `repeats`.
+    int count(int key, int mods = 0, bool repeats = false, int without = 0) const {
         return int(std::count_if(presses_.begin(), presses_.end(), [&](const Press& p) {
-            return p.key == key && (p.mods & mods) == mods && (repeats || !p.repeat);
+            return p.key == key && (p.mods & mods) == mods && (p.mods & without) == 0 &&
+                   (repeats || !p.repeat);
         }));
     }
     bool pressed(int key, int mods = 0) const { return count(key, mods) > 0; }

@@ -17,11 +17,15 @@ Layout compute_layout(const LayoutOptions& o) {
     const float controls = std::min(27.0f * o.em, 0.55f * width);
     layout.controls = {0.0f, 0.0f, controls, height};
     const float right = width - controls;
-    // The analysis tables want about 14 lines; the image keeps at least 40% of the height.
+    // The analysis tables want about 14 lines; the image keeps at least 40% of the height,
+    // unless the split between them was dragged.
+    const float dragged =
+        std::clamp(o.analysis_share, kMinAnalysisShare, kMaxAnalysisShare) * height;
     const float analysis =
-        o.analysis_open
-            ? std::clamp(0.4f * height, std::min(14.0f * o.em, 0.6f * height), 0.6f * height)
-            : std::min(o.title_height, 0.6f * height);
+        !o.analysis_open ? std::min(o.title_height, 0.6f * height)
+        : o.analysis_share > 0.0f
+            ? std::max(dragged, std::min(o.title_height, height))
+            : std::clamp(0.4f * height, std::min(14.0f * o.em, 0.6f * height), 0.6f * height);
     layout.analysis = {controls, height - analysis, right, analysis};
     // The timeline: one row of widgets with the window's padding, while the image keeps at
     // least a third of the height.

@@ -35,7 +35,12 @@ struct LayoutOptions {
     bool panels_hidden = false;         // Tab / F1: the image fills the window
     bool analysis_open = true;          // collapsed: only its title bar stays
     bool animated = false;              // a timeline bar under the image
+    float analysis_share = 0.0f;        // the open analysis's share of the height (dragged);
+                                        // 0: sized to its tables
 };
+
+/// The shares of the height the analysis may be dragged to: the image keeps a sixth.
+inline constexpr float kMinAnalysisShare = 0.1f, kMaxAnalysisShare = 5.0f / 6.0f;
 
 struct Layout {
     Rect controls;  // left column, full height

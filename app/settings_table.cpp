@@ -132,6 +132,10 @@ void set_time(ViewerState& s, double t) {  // shows time t, paused
     seek(s, t);
     if (!s.playback.error.empty()) throw InputError(s.playback.error);
 }
+void set_integrator(ViewerState& s, double value) {  // a choice every later scene keeps
+    s.ui.integrator = Integrator(int(value));
+    s.integrator_chosen = true;
+}
 void set_play(ViewerState& s, double on) {
     s.playback.playing = on != 0.0;
     s.playback.waited = 0.0;
@@ -159,8 +163,11 @@ const SettingInfo kSettings[] = {
                                                             "how rays are traced"),
     choice<kEmbreeModes, &ViewerState::ui, &UiSettings::embree_mode>(
         "embree-mode", "embree mode", "how the embree method hands rays to Embree"),
-    choice<kIntegrators, &ViewerState::ui, &UiSettings::integrator>("integrator", "integrator",
-                                                                    "integrator"),
+    with(choice<kIntegrators, &ViewerState::ui, &UiSettings::integrator>(
+             "integrator", "integrator",
+             "integrator (until one is chosen, path for scenes with emitters, ao for those "
+             "without)"),
+         nullptr, set_integrator),
     choice<kPrimaryShadings, &ViewerState::ui, &UiSettings::primary>(
         "primary", "shading", "primary: what the camera rays show"),
     integer<&ViewerState::ui, &UiSettings::max_depth>(
@@ -187,6 +194,16 @@ const SettingInfo kSettings[] = {
                                  -kMaxExposure, kMaxExposure, -8, 8),
     choice<kToneMaps, &ViewerState::tone_map>("tone-map", "tone map",
                                               "display only: how radiance above 1 is compressed"),
+    real<&ViewerState::font_scale>(
+        "font-scale", "font scale",
+        "the panels' text and widgets, times the monitor's content scale (Ctrl +, Ctrl -; "
+        "Ctrl 0: 1)",
+        kMinFontScale, kMaxFontScale, kMinFontScale, kMaxFontScale),
+    real<&ViewerState::analysis_share>(
+        "analysis-height", "analysis height",
+        "the analysis area's share of the window's height (drag its title bar up or down; 0: "
+        "sized to its tables)",
+        0, kMaxAnalysisShare, 0, kMaxAnalysisShare),
     steps<&ViewerState::compare_spp>(
         "compare-spp", "compare spp",
         "camera rays per pixel, one batch, of `compare`: 1, the pixel centres; more, jittered "

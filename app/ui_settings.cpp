@@ -110,6 +110,16 @@ std::vector<float> explorer_tint(const Analysis& a, std::int32_t node, std::int3
     return tint;
 }
 
+Integrator default_integrator(const Scene& scene) {
+    for (const std::uint32_t m : scene.triangle_materials)
+        if (m < scene.materials.size() && scene.materials[m].emissive()) return Integrator::path;
+    return Integrator::ao;
+}
+
+float step_font_scale(float scale, int steps) {
+    return std::clamp(scale * std::pow(kFontScaleStep, float(steps)), kMinFontScale, kMaxFontScale);
+}
+
 bool analysis_stale(const Analysis& a, const RenderRequest& r, BatchId batch) {
     // The camera rays depend on the view, size and seed alone; later batches on every setting
     // of the pass.

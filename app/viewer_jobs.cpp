@@ -43,6 +43,7 @@ void load_into(ViewerState& s, const std::string& spec, const CameraOptions& fla
         } else {
             scene = std::make_shared<const Scene>(std::move(animated.scene));
         }
+        if (!s.integrator_chosen) s.ui.integrator = default_integrator(*scene);
         if (!keep_view) {
             s.scene_camera = default_camera(*scene);
             s.camera.reset(choose_camera(*scene, flags));

@@ -88,8 +88,18 @@ void handle_keys(ViewerState& s, float dt, bool& quit) {
     const float forward = key(GLFW_KEY_W) - key(GLFW_KEY_S);
     const float right = key(GLFW_KEY_D) - key(GLFW_KEY_A);
     const float up = key(GLFW_KEY_E) - key(GLFW_KEY_Q);
-    const int faster = keys.count(GLFW_KEY_EQUAL, GLFW_MOD_SHIFT) + keys.count(GLFW_KEY_KP_ADD) -
-                       keys.count(GLFW_KEY_MINUS) - keys.count(GLFW_KEY_KP_SUBTRACT);
+    // +/- the fly speed; with Ctrl, the font (Ctrl 0: its default).
+    const auto plus_minus = [&](int mods, int without) {
+        return keys.count(GLFW_KEY_EQUAL, mods, false, without) +
+               keys.count(GLFW_KEY_KP_ADD, mods, false, without) -
+               keys.count(GLFW_KEY_MINUS, mods, false, without) -
+               keys.count(GLFW_KEY_KP_SUBTRACT, mods, false, without);
+    };
+    const int larger = plus_minus(GLFW_MOD_CONTROL, 0);
+    if (larger != 0) s.font_scale = step_font_scale(s.font_scale, larger);
+    if (keys.pressed(GLFW_KEY_0, GLFW_MOD_CONTROL)) s.font_scale = 1.0f;
+    // '+' is Shift + '=' on most layouts: '=' alone counts too.
+    const int faster = plus_minus(0, GLFW_MOD_CONTROL);
     if (faster != 0)
         s.fly_speed_step = std::clamp(s.fly_speed_step + faster, -kFlySpeedSteps, kFlySpeedSteps);
     if ((forward != 0 || right != 0 || up != 0) && s.scene) {
@@ -166,11 +176,14 @@ class Viewer {
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
+        float content_scale_y = 1.0f;  // the same as x on every platform GLFW supports
+        glfwGetWindowContentScale(window_, &s_.content_scale, &content_scale_y);
+        ImGui::GetIO().FontGlobalScale = s_.font_scale * s_.content_scale;
         ImGui::NewFrame();
         const ImGuiIO& io = ImGui::GetIO();
         s_.layout = compute_layout({io.DisplaySize.x, io.DisplaySize.y, ImGui::GetFontSize(),
                                     ImGui::GetFrameHeight(), s_.panels_hidden, s_.analysis_open,
-                                    bool(s_.playback.frames)});
+                                    bool(s_.playback.frames), s_.analysis_share});
         const Rect& image = s_.layout.image;
         const auto in_image = [&](ImVec2 p) {
             return p.x >= image.x && p.y >= image.y && p.x < image.right() && p.y < image.bottom();

@@ -139,6 +139,7 @@ struct Playback {
 
 struct ViewerState {
     UiSettings ui;
+    bool integrator_chosen = false;  // else each scene gets path or ao (default_integrator())
     View view = View::render;
     bool heat_log = true;
     float exposure = 0.0f;
@@ -188,9 +189,14 @@ struct ViewerState {
 
     // Layout: what the last frame drew where (app/layout.h).
     Layout layout;
-    bool panels_hidden = false;  // Tab / F1
+    bool panels_hidden = false;   // Tab / F1
+    float font_scale = 1.0f;      // of the panels, times content_scale (Ctrl +/-)
+    float content_scale = 1.0f;   // the monitor's (the window system's DPI scale)
+    float analysis_share = 0.0f;  // LayoutOptions::analysis_share (the dragged split)
+    bool dragging_split = false;  // the analysis's title bar is being dragged
     bool analysis_open = true;
     bool show_help = false;                // H / ?
+    bool all_columns = false;              // the Statistics table's detail columns too
     KeyPresses keys;                       // since the frame began (the window's key events)
     std::vector<std::string> select_tabs;  // tabs to bring forward (the script's `tab NAME`)
     std::vector<PanelPlacement> placements;
@@ -231,6 +237,17 @@ struct ViewerState {
     bool analysis_stale = false;   // recorded for another view, parameters or scene
     RenderRequest submitted;       // what the render in progress was asked for
 };
+
+/// Path tracing for a scene with emitters; ambient occlusion for one without, which path
+/// tracing lights only by the sky through its openings (Sponza's first passes are almost
+/// black), while AO shows its shapes at once, through an any-hit batch the analysis can show.
+Integrator default_integrator(const Scene& scene);
+
+/// The font scales Ctrl +/- steps through (font_scale), and their bounds.
+inline constexpr float kMinFontScale = 0.5f, kMaxFontScale = 3.0f, kFontScaleStep = 1.125f;
+
+/// The font scale after `steps` presses of Ctrl + (negative: Ctrl -), within the bounds.
+float step_font_scale(float scale, int steps);
 
 /// Moves the animation to `t` (wrapped into [0, duration] when looping, else clamped; the
 /// end stops playback; an animation without duration does not play): the state's scene

@@ -65,6 +65,42 @@ TEST(Layout, PanelsTileTheWindowAndNeverOverlapTheImage) {
     EXPECT_EQ(hidden.image.h, 800.0f);
 }
 
+// The dragged split: the analysis takes its share of the height, within bounds that keep a sixth
+// for the image; collapsed, only its title bar, whatever the share.
+TEST(Layout, TheDraggedSplitSetsTheAnalysisHeight) {
+    const auto analysis = [](float share, bool open = true, float height = 800.0f) {
+        return compute_layout({1280.0f, height, 13.0f, 19.0f, false, open, false, share})
+            .analysis.h;
+    };
+    EXPECT_FLOAT_EQ(analysis(0.5f), 400.0f);
+    EXPECT_FLOAT_EQ(analysis(0.25f), 200.0f);
+    EXPECT_FLOAT_EQ(analysis(0.99f), 800.0f * kMaxAnalysisShare);
+    EXPECT_FLOAT_EQ(analysis(0.001f), 800.0f * kMinAnalysisShare);
+    EXPECT_FLOAT_EQ(analysis(0.001f, true, 100.0f), 19.0f) << "never less than its title bar";
+    EXPECT_FLOAT_EQ(analysis(0.5f, false), 19.0f);
+    EXPECT_FLOAT_EQ(analysis(0.0f), compute_layout({1280.0f, 800.0f, 13.0f, 19.0f}).analysis.h);
+    for (const float share : {0.05f, 0.3f, 0.7f, 0.95f}) {
+        const Layout l = compute_layout({1280.0f, 800.0f, 13.0f, 19.0f, false, true, true, share});
+        EXPECT_FALSE(l.image.overlaps(l.analysis));
+        EXPECT_FALSE(l.timeline.overlaps(l.analysis));
+        EXPECT_GE(l.image.h, 0.1f * 800.0f);
+        EXPECT_NEAR(l.image.h + l.timeline.h + l.analysis.h, 800.0f, 1e-3f);
+    }
+}
+
+TEST(Layout, CtrlPlusAndMinusStepTheFontScaleWithinItsBounds) {
+    EXPECT_FLOAT_EQ(step_font_scale(1.0f, 1), kFontScaleStep);
+    EXPECT_FLOAT_EQ(step_font_scale(step_font_scale(1.0f, 3), -3), 1.0f);
+    EXPECT_FLOAT_EQ(step_font_scale(1.0f, 100), kMaxFontScale);
+    EXPECT_FLOAT_EQ(step_font_scale(1.0f, -100), kMinFontScale);
+    KeyPresses keys;
+    keys.press(45, 2, false);  // Ctrl + '-'
+    keys.press(45, 0, false);  // '-'
+    EXPECT_EQ(keys.count(45, 2), 1) << "Ctrl held";
+    EXPECT_EQ(keys.count(45, 0, false, 2), 1) << "without Ctrl: the fly speed's";
+    EXPECT_EQ(keys.count(45), 2);
+}
+
 TEST(Layout, ProblemsNameThePanelThatOverlapsLeavesOrClips) {
     const Layout l = compute_layout({1024, 640, 13, 19, false, true});
     EXPECT_TRUE(layout_problems(l, 1024, 640, {{"Controls", l.controls, 0}}).empty());
@@ -196,6 +232,14 @@ TEST(AnalysisTables, EveryColumnExplainsItself) {
         }
     }
     EXPECT_EQ(level_columns().size(), 17u);  // the Statistics table draws 17 cells per row
+    // The compact set keeps what the paper's mechanism turns on: skipped filters, sampling and
+    // filter box tests, triangle tests, both alphas and the time.
+    std::set<std::string> compact;
+    for (const Column& c : level_columns())
+        if (!c.detail) compact.insert(c.name);
+    EXPECT_EQ(compact,
+              (std::set<std::string>{"level", "nodes", "rays in", "skipped", "tris", "sample box",
+                                     "filter box", "tri tests", "alpha est", "alpha true", "ms"}));
 }
 
 TEST(KeyPresses, ATapWithinOneFrameCountsOnce) {

@@ -464,6 +464,32 @@ TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
     EXPECT_TRUE(drawn["errors_shown"].empty()) << drawn.dump();
 }
 
+// `set font-scale` (Ctrl +/-) scales the panels' text and widgets; `set analysis-height` moves
+// the split between the image and the analysis.
+TEST(ViewerScreenshots, FontScaleAndTheSplitResizeThePanels) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+    const auto result = run_viewer_script(
+        dir.path(),
+        "wait-loaded\nwait-settled\nlayout " + file("plain.json") +
+            "\nset font-scale 1.5\nset analysis-height 0.5\nwait-settled\nlayout " +
+            file("scaled.json") + "\n",
+        1280, 800, "builtin:cornell");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto read = [&](const std::string& name) {
+        std::ifstream in(file(name));
+        return nlohmann::json::parse(in);
+    };
+    const nlohmann::json plain = read("plain.json"), scaled = read("scaled.json");
+    const double tab = plain["items"]["Scene/tab"]["h"].get<double>();
+    // A tab is the font's height (13 units unscaled) and an unscaled padding: half a font more.
+    EXPECT_NEAR(scaled["items"]["Scene/tab"]["h"].get<double>() - tab, 0.5 * 13.0, 1.0);
+    EXPECT_NEAR(scaled["analysis"]["h"].get<double>(), 400.0, 1.0);
+    EXPECT_NEAR(scaled["image"]["h"].get<double>(), 400.0, 1.0);
+    EXPECT_LT(plain["analysis"]["h"].get<double>(), 399.0) << "sized to its tables before";
+}
+
 TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes) {
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
     const auto dir = std::filesystem::temp_directory_path() /
@@ -480,7 +506,8 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
         script += std::string("tab ") + tab + "\nwait-settled\ncheck-layout\n";
     script += "set node 1\ntab Recursion\nwait-settled\ncheck-layout\n";
     script +=
-        "help on\nwait-settled\ncheck-layout\nhelp off\nanalysis closed\nwait-settled\n"
+        "help on\nwait-settled\ncheck-layout\nhelp off\nset analysis-height 0.7\ntab "
+        "Statistics\nwait-settled\ncheck-layout\nanalysis closed\nwait-settled\n"
         "check-layout\n";
     for (const auto& [width, height] : {std::pair{1024, 640}, std::pair{1600, 900}}) {
         const auto result = run_viewer_script(
@@ -491,7 +518,7 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
         for (std::size_t at = 0;
              (at = result.output.find("layout ok: 2 panels", at)) != std::string::npos; ++at)
             ++checks;
-        EXPECT_EQ(checks, 12u) << result.output;
+        EXPECT_EQ(checks, 13u) << result.output;
     }
     std::filesystem::remove_all(dir);
 }

@@ -155,6 +155,23 @@ TEST(Settings, RangesAreTheEnginesAndWidgetsSpanInsideThem) {
     }
 }
 
+TEST(Settings, ScenesWithoutEmittersStartWithAmbientOcclusionUntilAnIntegratorIsChosen) {
+    ViewerState s;
+    load_into(s, "builtin:sphere");
+    ASSERT_EQ(s.scene_error, "");
+    EXPECT_EQ(s.ui.integrator, Integrator::ao);
+    load_into(s, "builtin:cornell");
+    EXPECT_EQ(s.ui.integrator, Integrator::path);
+    apply_setting(s, "integrator", "primary");
+    load_into(s, "builtin:sphere");
+    EXPECT_EQ(s.ui.integrator, Integrator::primary) << "a choice is kept";
+    ViewerState widget;
+    const SettingInfo& integrator = *find_setting("integrator");
+    integrator.set(widget, double(int(Integrator::path)));  // as the combo sets it
+    load_into(widget, "builtin:sphere");
+    EXPECT_EQ(widget.ui.integrator, Integrator::path);
+}
+
 TEST(Settings, NoKeyMeansTwoThingsAndAnimationSettingsNeedAnAnimation) {
     std::set<std::string_view> keys;
     for (const SettingInfo& info : viewer_settings())

@@ -12,19 +12,22 @@ constexpr Column kLevels[] = {
     {"nodes", "Nodes the level's rays entered (count)."},
     {"leaves",
      "Of those, nodes solved by brute force: every ray against every triangle "
-     "(count)."},
+     "(count).",
+     true},
     {"rays in", "Rays entering the level's nodes, summed over its nodes (ray-node pairs)."},
     {"rays down",
      "Rays handed to the children, after filtering or unfiltered (ray-node "
-     "pairs)."},
-    {"filtered", "Child ray sets filtered against the child's box (count)."},
+     "pairs).",
+     true},
+    {"filtered", "Child ray sets filtered against the child's box (count).", true},
     {"skipped",
      "Child ray sets passed down unfiltered, where alpha > 1 - C_bv / (n_child "
      "C_child) (Section 3.4; count)."},
     {"2nd split",
      "Nodes whose second child got its rays in two parts (second-child split): at "
      "once, the rays that missed the first child's box; after it, the rest. Each "
-     "is one more child ray set, filtered or skipped (count)."},
+     "is one more child ray set, filtered or skipped (count).",
+     true},
     {"tris", "Triangles (pre-split pieces count one each) summed over the level's nodes."},
     {"sample box",
      "Ray-box tests of the sampled rays against the 2(K-1) candidate child "
@@ -33,10 +36,12 @@ constexpr Column kLevels[] = {
     {"tri tests", "Ray-triangle tests in the level's leaves (count)."},
     {"order 1st",
      "Of the rays that hit both children's boxes and found their hit below, the "
-     "share whose hit was in the child visited first (percent; Section 3.3)."},
+     "share whose hit was in the child visited first (percent; Section 3.3).",
+     true},
     {"culled",
      "Rays the second child's filter dropped only because their hit so far is nearer "
-     "than its box: what visiting the near child first bought (count)."},
+     "than its box: what visiting the near child first bought (count).",
+     true},
     {"alpha est",
      "Mean estimated hit ratio of the chosen splits' children, from the source "
      "the node used (sampled rays, area ratio or every ray; 0-1)."},

@@ -7,7 +7,8 @@ namespace edacrt::app {
 
 struct Column {
     const char* name;
-    const char* help;  // meaning and unit
+    const char* help;     // meaning and unit
+    bool detail = false;  // left out of the compact set (ViewerState::all_columns off)
 };
 
 /// Statistics: one row per recursion level.

@@ -22,6 +22,8 @@ void draw_help(ViewerState& s) {
         {"double click", "orbit about the point under the cursor"},
         {"W A S D, Q E", "fly forward, left, back, right, down, up"},
         {"+ / -", "fly faster / slower (the Camera tab shows the speed)"},
+        {"Ctrl + / Ctrl -, Ctrl 0", "larger / smaller panel text, its default"},
+        {"drag the Analysis title", "more or less room for the analysis"},
         {"R", "reset the view to the scene's"},
         {"Tab or F1", "hide / show all panels"},
         {"H or ?", "this help"},

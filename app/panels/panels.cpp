@@ -5,6 +5,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdarg>
 #include <cstdint>
@@ -43,6 +44,24 @@ bool tab(ViewerState& s, const char* name) {
     return open;
 }
 
+/// The analysis's title bar is the split between it and the image: dragging it up or down sets
+/// the analysis's share of the window's height for the next frame's layout. A click that does
+/// not drag leaves it; its arrow still collapses the analysis.
+void drag_split(ViewerState& s) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 lo = ImGui::GetWindowPos();
+    const ImVec2 hi(lo.x + ImGui::GetWindowWidth(), lo.y + ImGui::GetFrameHeight());
+    const bool on_title = ImGui::IsWindowHovered() && ImGui::IsMouseHoveringRect(lo, hi, false);
+    if (!s.analysis_open || !ImGui::IsMouseDown(ImGuiMouseButton_Left)) s.dragging_split = false;
+    if (!s.analysis_open) return;
+    if (on_title || s.dragging_split) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeNS);
+    if (on_title && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) s.dragging_split = true;
+    if (s.dragging_split && io.DisplaySize.y > 0.0f &&
+        ImGui::IsMouseDragging(ImGuiMouseButton_Left))
+        s.analysis_share = std::clamp(1.0f - io.MousePos.y / io.DisplaySize.y, kMinAnalysisShare,
+                                      kMaxAnalysisShare);
+}
+
 }  // namespace
 
 void cell_text(const char* format, ...) {
@@ -51,6 +70,9 @@ void cell_text(const char* format, ...) {
     va_start(args, format);
     std::vsnprintf(text, sizeof text, format, args);
     va_end(args);
+    if (ImGui::TableGetColumnCount() > 0 &&
+        !(ImGui::TableGetColumnFlags() & ImGuiTableColumnFlags_IsEnabled))
+        return;
     // Columns size to their content from the previous frame: a cell is clipped when its text
     // is wider than what is left of it.
     const float width = ImGui::GetContentRegionAvail().x;
@@ -59,9 +81,11 @@ void cell_text(const char* format, ...) {
     ImGui::TextUnformatted(text);
 }
 
-void table_headers(std::span<const Column> columns, int frozen_columns) {
-    for (const Column& c : columns) ImGui::TableSetupColumn(c.name);
-    ImGui::TableSetupScrollFreeze(frozen_columns, 1);
+void table_headers(std::span<const Column> columns, int frozen_columns, bool compact,
+                   int frozen_rows) {
+    for (const Column& c : columns)
+        ImGui::TableSetupColumn(c.name, compact && c.detail ? ImGuiTableColumnFlags_Disabled : 0);
+    ImGui::TableSetupScrollFreeze(frozen_columns, 1 + frozen_rows);
     ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
     for (const Column& c : columns) {
         ImGui::TableNextColumn();
@@ -138,6 +162,7 @@ void draw_analysis(ViewerState& s, float heat_max) {
     const bool open = ImGui::Begin("Analysis", nullptr, kPinned);
     // The title bar's arrow collapses it; the next frame's layout gives the image the room.
     s.analysis_open = !ImGui::IsWindowCollapsed();
+    drag_split(s);
     take_clipped_cells();
     if (open && ImGui::BeginTabBar("analysis")) {
         if (tab(s, "Statistics")) {

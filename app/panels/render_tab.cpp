@@ -35,6 +35,7 @@ void draw_render_tab(ViewerState& s) {
     ImGui::Separator();
     setting_widget(s, "exposure", {nullptr, "%.1f stops"});
     setting_widget(s, "tone-map");
+    setting_widget(s, "font-scale", {nullptr, "%.2fx"});
     ImGui::PopItemWidth();
 
     ImGui::Separator();

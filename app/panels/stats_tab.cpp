@@ -192,34 +192,42 @@ void draw_stats_tab(ViewerState& s) {
                                       ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
                                       ImGuiTableFlags_SizingFixedFit;
         const float rows = float(levels.size() + 3) * ImGui::GetTextLineHeightWithSpacing();
+        ImGui::Checkbox("all columns", &s.all_columns);
+        wrapped_tooltip(
+            "off: the compact set that fits the default window (leaves, rays down, "
+            "filtered, 2nd split, order 1st and culled left out)");
         if (ImGui::BeginTable("levels", int(level_columns().size()), flags,
                               ImVec2(0, std::min(rows, 220.0f)))) {
-            table_headers(level_columns(), 1);
+            // The total first, under the header and frozen with it: always in view.
+            table_headers(level_columns(), 1, !s.all_columns, 1);
             const auto count = [](std::uint64_t v) {
                 ImGui::TableNextColumn();
                 cell_text("%llu", static_cast<unsigned long long>(v));
             };
-            // The root filter: the batch against the scene box (rays in, rays down, filter
-            // box tests and time; the other columns do not apply).
-            const RootStats& root = detail->root;
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            cell_text("scene box");
-            ImGui::TableSetColumnIndex(3);
-            cell_text("%llu", static_cast<unsigned long long>(root.rays));
-            count(root.entered);
-            ImGui::TableSetColumnIndex(10);
-            cell_text("%llu", static_cast<unsigned long long>(root.box_tests));
-            ImGui::TableSetColumnIndex(16);
-            cell_text("%.2f", root.seconds * 1e3);
             LevelStats total;
-            for (std::size_t i = 0; i <= levels.size(); ++i) {
-                const bool is_total = i == levels.size();
-                const LevelStats& l = is_total ? total : levels[i];
-                if (!is_total) total += l;
+            for (const LevelStats& l : levels) total += l;
+            // The total, the root filter (the batch against the scene box: rays in, rays
+            // down, filter box tests and time; the other columns do not apply), the levels.
+            for (std::size_t row = 0; row < levels.size() + 2; ++row) {
+                if (row == 1) {
+                    const RootStats& root = detail->root;
+                    ImGui::TableNextRow();
+                    ImGui::TableNextColumn();
+                    cell_text("scene box");
+                    ImGui::TableSetColumnIndex(3);
+                    cell_text("%llu", static_cast<unsigned long long>(root.rays));
+                    count(root.entered);
+                    ImGui::TableSetColumnIndex(10);
+                    cell_text("%llu", static_cast<unsigned long long>(root.box_tests));
+                    ImGui::TableSetColumnIndex(16);
+                    cell_text("%.2f", root.seconds * 1e3);
+                    continue;
+                }
+                const bool is_total = row == 0;
+                const LevelStats& l = is_total ? total : levels[row - 2];
                 ImGui::TableNextRow();
                 ImGui::TableNextColumn();
-                is_total ? cell_text("total") : cell_text("%zu", i);
+                is_total ? cell_text("total") : cell_text("%zu", row - 2);
                 for (std::uint64_t v :
                      {l.nodes, l.leaves, l.rays_in, l.rays_passed, l.filters_done,
                       l.filters_skipped, l.second_splits, l.triangles, l.sample_box_tests,

@@ -49,6 +49,21 @@ ScriptNext drag_camera(ScriptStep& st, void (OrbitCamera::*drag)(float, float)) 
     return ScriptNext::next_frame;
 }
 
+/// Writes the text `make` gives for the state to the verb's FILE (the output `what` of
+/// check_output_spares_inputs(), `description` in errors); a failure fails the script.
+ScriptNext write_output(ScriptStep& st, const char* what, const char* description,
+                        std::string (*make)(const ViewerState&)) {
+    const std::string& path = st.c.args[0];
+    try {
+        check_output_spares_inputs(st.s, path, what);
+        create_parent_folders(path);
+        write_file(path, make(st.s), description);
+    } catch (const InputError& e) {
+        st.fail(e.what());
+    }
+    return ScriptNext::go_on;
+}
+
 std::string seconds_text(double seconds) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", seconds);
@@ -287,17 +302,7 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
          "the panels and the widgets the panels report, in window coordinates "
          "(times "
          "framebuffer_scale for screenshot pixels)",
-         [](R&, Step& st) {
-             const std::string& path = st.c.args[0];
-             try {
-                 check_output_spares_inputs(st.s, path, "layout");
-                 create_parent_folders(path);
-                 write_file(path, layout_json(st.s), "layout");
-             } catch (const InputError& e) {
-                 st.fail(e.what());
-             }
-             return Next::go_on;
-         }},
+         [](R&, Step& st) { return write_output(st, "layout", "layout", layout_json); }},
         {"save-view", 1, Args::words, "FILE", "save the image region as shown (.png or .jpg)",
          [](R& r, Step& st) { return r.ask_save(st, ViewerState::Save::shown); }},
         {"save-linear", 1, Args::words, "FILE",
@@ -306,30 +311,15 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
         {"write-command", 1, Args::words, "FILE",
          "write the `edacrt render` command that reproduces the view",
          [](R&, Step& st) {
-             const std::string& path = st.c.args[0];
-             try {
-                 check_output_spares_inputs(st.s, path, "write-command");
-                 create_parent_folders(path);
-                 write_file(path, st.s.command_line + "\n", "command line");
-             } catch (const InputError& e) {
-                 st.fail(e.what());
-             }
-             return Next::go_on;
+             return write_output(st, "write-command", "command line",
+                                 [](const ViewerState& s) { return s.command_line + "\n"; });
          }},
         {"write-analysis", 1, Args::words, "FILE",
          "write what Statistics shows as JSON: the batch (`set batch camera|bounce:N|shadow:N|"
          "ao`), its ray count and the per-level table (after wait-analysis for a batch other "
          "than the camera rays)",
          [](R&, Step& st) {
-             const std::string& path = st.c.args[0];
-             try {
-                 check_output_spares_inputs(st.s, path, "write-analysis");
-                 create_parent_folders(path);
-                 write_file(path, analysis_json(st.s), "analysis");
-             } catch (const InputError& e) {
-                 st.fail(e.what());
-             }
-             return Next::go_on;
+             return write_output(st, "write-analysis", "analysis", analysis_json);
          }},
         {"bookmark", 1, Args::words, "NAME",
          "save the view as the scene's bookmark NAME in the bookmarks file "

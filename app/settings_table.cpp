@@ -204,6 +204,12 @@ const SettingInfo kSettings[] = {
         "the analysis area's share of the window's height (drag its title bar up or down; 0: "
         "sized to its tables)",
         0, kMaxAnalysisShare, 0, kMaxAnalysisShare),
+    toggle<&ViewerState::step_playing>(
+        "step-play", "play",
+        "step-through: advance node by node by itself, at step-rate, to the last node"),
+    real<&ViewerState::step_rate>("step-rate", "nodes/s",
+                                  "step-through: nodes entered per second while playing", 0.1, 1000,
+                                  0.1, 1000, true),
     steps<&ViewerState::compare_spp>(
         "compare-spp", "compare spp",
         "camera rays per pixel, one batch, of `compare`: 1, the pixel centres; more, jittered "

@@ -116,6 +116,20 @@ Integrator default_integrator(const Scene& scene) {
     return Integrator::ao;
 }
 
+int advance_step(int step, int last, float rate, double dt, double& carry, bool& playing) {
+    if (!playing) return step;
+    carry += double(rate) * std::max(dt, 0.0);
+    const double whole = std::floor(carry);
+    carry -= whole;
+    const double next = double(step) + whole;
+    if (next >= double(last)) {
+        playing = false;
+        carry = 0.0;
+        return last;
+    }
+    return int(next);
+}
+
 float step_font_scale(float scale, int steps) {
     return std::clamp(scale * std::pow(kFontScaleStep, float(steps)), kMinFontScale, kMaxFontScale);
 }

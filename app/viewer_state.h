@@ -233,6 +233,9 @@ struct ViewerState {
     bool explorer_tint = true;     // tint the selected node's pixels
     bool stepping = false;         // step-through: the selected node follows `step`
     int step = 0;                  // nodes entered so far, in the recursion's order
+    bool step_playing = false;     // step-through advances by itself...
+    float step_rate = 10.0f;       // ...this many nodes per second
+    double step_carry = 0.0;       // the part of a node played but not yet shown
     bool recursion_shown = false;  // the Recursion tab was drawn this frame
     bool analysis_stale = false;   // recorded for another view, parameters or scene
     RenderRequest submitted;       // what the render in progress was asked for
@@ -242,6 +245,11 @@ struct ViewerState {
 /// tracing lights only by the sky through its openings (Sponza's first passes are almost
 /// black), while AO shows its shapes at once, through an any-hit batch the analysis can show.
 Integrator default_integrator(const Scene& scene);
+
+/// Step-through playing at `rate` nodes per second, `dt` seconds after the last frame: the node
+/// to show of nodes 0..last, `carry` keeping the fraction of a node between frames. Returns
+/// the step; playing stops (`playing` false) at the last node.
+int advance_step(int step, int last, float rate, double dt, double& carry, bool& playing);
 
 /// The font scales Ctrl +/- steps through (font_scale), and their bounds.
 inline constexpr float kMinFontScale = 0.5f, kMaxFontScale = 3.0f, kFontScaleStep = 1.125f;

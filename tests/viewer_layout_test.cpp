@@ -88,6 +88,23 @@ TEST(Layout, TheDraggedSplitSetsTheAnalysisHeight) {
     }
 }
 
+TEST(StepThrough, PlayingAdvancesAtItsRateAndStopsAtTheLastNode) {
+    double carry = 0.0;
+    bool playing = true;
+    int step = advance_step(3, 20, 10.0f, 0.25, carry, playing);  // 2.5 nodes
+    EXPECT_EQ(step, 5);
+    EXPECT_DOUBLE_EQ(carry, 0.5);
+    step = advance_step(step, 20, 10.0f, 0.05, carry, playing);  // the half node carried
+    EXPECT_EQ(step, 6);
+    EXPECT_TRUE(playing);
+    step = advance_step(step, 20, 10.0f, 5.0, carry, playing);
+    EXPECT_EQ(step, 20);
+    EXPECT_FALSE(playing);
+    EXPECT_EQ(advance_step(7, 20, 10.0f, 1.0, carry, playing), 7) << "paused";
+    playing = true;
+    EXPECT_EQ(advance_step(7, 20, 10.0f, -1.0, carry, playing), 7) << "no time, no step";
+}
+
 TEST(Layout, CtrlPlusAndMinusStepTheFontScaleWithinItsBounds) {
     EXPECT_FLOAT_EQ(step_font_scale(1.0f, 1), kFontScaleStep);
     EXPECT_FLOAT_EQ(step_font_scale(step_font_scale(1.0f, 3), -3), 1.0f);

@@ -118,6 +118,13 @@ void step_through(ViewerState& s, const Analysis& a) {
     ImGui::SameLine();
     if (ImGui::ArrowButton("##next", ImGuiDir_Right)) s.step = std::min(last, s.step + 1);
     ImGui::SameLine();
+    // Auto-play; started at the last node, from the first again.
+    if (setting_widget(s, "step-play") && s.step_playing && s.step == last) s.step = 0;
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);
+    setting_widget(s, "step-rate", {"##step-rate", "%.3g nodes/s"});
+    s.step = advance_step(s.step, last, s.step_rate, ImGui::GetIO().DeltaTime, s.step_carry,
+                          s.step_playing);
     ImGui::SetNextItemWidth(-1.0f);
     ImGui::SliderInt("##step", &s.step, 0, last, "node %d");
     const NodeRecord& n = nodes[std::size_t(s.step)];
@@ -137,9 +144,9 @@ void draw_recursion_tab(ViewerState& s) {
     s.recursion_shown = true;
     if (ImGui::Button(s.analysis_running ? "recording..." : "record")) s.analysis_requested = true;
     ImGui::SameLine();
-    if (ImGui::RadioButton("the view's camera rays", !s.explorer_crop)) s.explorer_crop = false;
+    if (ImGui::RadioButton("the whole batch", !s.explorer_crop)) s.explorer_crop = false;
     ImGui::SameLine();
-    if (ImGui::RadioButton("a 64x64 crop (to step through)", s.explorer_crop))
+    if (ImGui::RadioButton("its 64x64 crop (to step through)", s.explorer_crop))
         s.explorer_crop = true;
     ImGui::SameLine();
     ImGui::Checkbox("tint pixels", &s.explorer_tint);

@@ -190,7 +190,7 @@ TEST(AnimationCli, AnAnimationFileAsSceneIsAnimatedAndUpperCaseJsonIsJson) {
 // --frames, --time and --shutter choose moments of an animation: a still scene refuses them.
 TEST(AnimationCli, AnimationFlagsWithoutAnAnimationAreRefused) {
     const TempDir dir;
-    for (const std::string& flag : {"--frames 0:1", "--time 1", "--shutter 0.1"}) {
+    for (const std::string flag : {"--frames 0:1", "--time 1", "--shutter 0.1"}) {
         const auto result = test::run_cli(kSmall + "--scene " + spot() + " " + flag + " --out " +
                                           (dir.path() / "x_%d.png").string());
         EXPECT_EQ(result.exit_code, 2) << flag << "\n" << result.output;  // a usage error

@@ -33,7 +33,9 @@ void expect_enum_table(const EnumTable<E, N>& table) {
         std::string upper(entry.name);
         std::transform(upper.begin(), upper.end(), upper.begin(),
                        [](unsigned char c) { return char(std::toupper(c)); });
-        if (upper != entry.name) EXPECT_FALSE(parse_enum(table, upper).has_value()) << upper;
+        if (upper != entry.name) {
+            EXPECT_FALSE(parse_enum(table, upper).has_value()) << upper;
+        }
         largest = std::max(largest, int(entry.value));
     }
     for (int i = 0; i <= largest; ++i)

@@ -17,8 +17,9 @@ TEST(FrameMemory, LargeAndSmallBlocksAreAlignedAndHoldWhatIsWritten) {
     for (const std::size_t n : {std::size_t(1), std::size_t(1000), std::size_t(3) << 20}) {
         FrameVector<std::uint32_t> v(n);
         EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % 64, 0u);
-        if (n * sizeof(std::uint32_t) >= (std::size_t(4) << 20))
+        if (n * sizeof(std::uint32_t) >= (std::size_t(4) << 20)) {
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % (std::size_t(1) << 21), 0u);
+        }
         for (std::size_t i = 0; i < n; ++i) v[i] = std::uint32_t(i * 7);
         v.resize(n + 5);  // moves into a new block
         for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(v[i], std::uint32_t(i * 7));

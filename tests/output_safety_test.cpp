@@ -254,8 +254,9 @@ TEST(OutputSafety, OutputsNeverReplaceTheCommandsInputs) {
             << result.output;
         EXPECT_NE(result.output.find(": writing it would replace what is read"), std::string::npos)
             << result.output;
-        if (c.before_loading)
+        if (c.before_loading) {
             EXPECT_EQ(result.output.find("loaded"), std::string::npos) << "work before the refusal";
+        }
         EXPECT_EQ(bytes_of(dir.path() / "tri.obj"), obj) << c.args;
         EXPECT_EQ(bytes_of(dir.path() / "m.mtl"), mtl) << c.args;
         EXPECT_EQ(bytes_of(dir.path() / "anim.json"), anim) << c.args;

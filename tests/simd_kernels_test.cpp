@@ -361,9 +361,12 @@ TEST(SimdKernels, FilterMovesExactlyThePassingRaysToTheFrontAndKeepsEveryRayWhol
             const std::size_t begin = n > 2 ? 1 : 0, count = n - begin - (n > 2 ? 1 : 0);
             const std::size_t passed = filter_rays(s.stream, begin, count, box);
             // Again on its own result: blocks that all pass or all miss (coherent rays).
-            if (round % 2 == 1) ASSERT_EQ(filter_rays(s.stream, begin, count, box), passed);
-            if (round % 4 == 3)
+            if (round % 2 == 1) {
+                ASSERT_EQ(filter_rays(s.stream, begin, count, box), passed);
+            }
+            if (round % 4 == 3) {
                 ASSERT_EQ(filter_rays(s.stream, begin + passed, count - passed, box), 0u);
+            }
             std::vector<bool> seen(n, false);
             for (std::size_t i = 0; i < n; ++i) {
                 const std::uint32_t id = s.stream.id[i];

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sanitizers.h"
 #include "scene/builtin_scenes.h"
 #include "scene/camera.h"
 #include "trace/edacrt_params.h"
@@ -172,10 +173,13 @@ TEST(EdacrtThreads, TheRecursionIsTheSameForAnyThreadCountAndAfterFirstOnOne) {
             const Traced two = trace_detailed(*tracer, rays, query, 2);
             EXPECT_EQ(two.detail.levels.at(0).nodes, 1u);
             EXPECT_GT(two.detail.nodes.size(), 100u);
-            for (int threads : {4, 8}) {
-                SCOPED_TRACE(std::to_string(threads) + " threads");
-                expect_same(two, trace_detailed(*tracer, rays, query, threads));
-            }
+            SCOPED_TRACE("4 threads");
+            expect_same(two, trace_detailed(*tracer, rays, query, 4));
+            // The sanitizers look for races and memory errors, which 2 and 4 threads show;
+            // the rest is the same code on other counts (ThreadSanitizer: 128 s for all).
+            if (test::kSanitized) continue;
+            SCOPED_TRACE("8 threads");
+            expect_same(two, trace_detailed(*tracer, rays, query, 8));
             SCOPED_TRACE("1 thread against after-first on 2");
             expect_same(trace_detailed(*waiting, rays, query, 2),
                         trace_detailed(*tracer, rays, query, 1));

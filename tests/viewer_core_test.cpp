@@ -544,7 +544,8 @@ TEST(Script, EveryVerbParsesAndIsInTheHelpAndTheReadme) {
         const std::string usage = "  " + std::string(verb.name) +
                                   (verb.usage.empty() ? "" : " " + std::string(verb.usage));
         EXPECT_NE(help.find(usage), std::string::npos) << usage;
-        EXPECT_NE(readme.find("`" + std::string(verb.name)), std::string::npos)
+        const std::string quoted = std::string("`").append(verb.name);
+        EXPECT_NE(readme.find(quoted), std::string::npos)
             << verb.name << " is not in README.md";
     }
 }

@@ -20,6 +20,7 @@
 #include "cli_runner.h"
 #include "render/exr_image.h"
 #include "render/image.h"
+#include "sanitizers.h"
 #include "temp_dir.h"
 #include "test_paths.h"
 
@@ -118,6 +119,11 @@ std::string xvfb_viewer(int screen_width, int screen_height, const std::string& 
            "x" + std::to_string(screen_height) + "x24 -noreset' " EDACRT_VIEWER " " + args;
 }
 
+/// Under the sanitizers rendering dominates a screenshot test (the Cornell box's 4 samples per
+/// pixel at 1280x800: 31 s with ASan, 9 s at half resolution), so the tests whose point is not
+/// the render's size render at half the image region's size there.
+const std::string kSanitizedResolution = test::kSanitized ? "--resolution 0.5 " : "";
+
 /// The viewer in a 1280x800 window filling the virtual screen.
 std::string viewer_under_xvfb(const std::string& args) {
     return xvfb_viewer(1280, 800, "--width 1280 --height 800 " + args);
@@ -168,8 +174,8 @@ TEST(ViewerScreenshots, CornellBoxRenderHeatMapsAndParameterChange) {
         << take("panels");
     const std::string scene =
         (test::source_dir() / "assets/cornell-box/CornellBox-Original.obj").string();
-    const auto result = test::run_command(
-        viewer_under_xvfb("--script " + (dir / "script.txt").string() + " " + scene));
+    const auto result = test::run_command(viewer_under_xvfb(
+        kSanitizedResolution + "--script " + (dir / "script.txt").string() + " " + scene));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     EXPECT_EQ(count(result.output, "error shown: /no/such/scene.obj"), 2u) << result.output;
 
@@ -271,8 +277,9 @@ TEST(ViewerScreenshots, RecursionExplorerAndTraversalDebuggerDrawTheirBoxes) {
         << take("debugger") << "orbit 60 0\nwait-settled\n"
         << take("moved");
     const std::string scene = (test::source_dir() / "assets/teapot/teapot.obj").string();
-    const auto result = test::run_command(viewer_under_xvfb(
-        "--integrator primary --script " + (dir / "script.txt").string() + " " + scene));
+    const auto result = test::run_command(
+        viewer_under_xvfb(kSanitizedResolution + "--integrator primary --script " +
+                          (dir / "script.txt").string() + " " + scene));
     ASSERT_EQ(result.exit_code, 0) << result.output;
     const Image plain = read_png(shot("plain")), debugger = read_png(shot("debugger"));
     // The followed ray's boxes: yellow (255, 230, 60) lines appear over the image region.
@@ -428,7 +435,8 @@ TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
         file("layout.json") + "\nset batch shadow:0\nwait-analysis\nwrite-analysis " +
         file("shadow.json") + "\nset batch bounce:4\nwait-analysis\nwrite-analysis " +
         file("none.json") + "\n";
-    const auto result = run_viewer_script(dir.path(), script, 1280, 800, "builtin:cornell");
+    const auto result =
+        run_viewer_script(dir.path(), script, 1280, 800, kSanitizedResolution + "builtin:cornell");
     EXPECT_EQ(result.exit_code, 1) << result.output;
     EXPECT_NE(result.output.find("script line 21: no statistics of batch bounce:4: no batch "
                                  "bounce:4: paths end after max-depth 3 bounces"),
@@ -510,9 +518,10 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
         "Statistics\nwait-settled\ncheck-layout\nanalysis closed\nwait-settled\n"
         "check-layout\n";
     for (const auto& [width, height] : {std::pair{1024, 640}, std::pair{1600, 900}}) {
-        const auto result = run_viewer_script(
-            dir, script, width, height,
-            "--integrator primary " + (test::source_dir() / "assets/teapot/teapot.obj").string());
+        const auto result =
+            run_viewer_script(dir, script, width, height,
+                              kSanitizedResolution + "--integrator primary " +
+                                  (test::source_dir() / "assets/teapot/teapot.obj").string());
         ASSERT_EQ(result.exit_code, 0) << width << "x" << height << "\n" << result.output;
         std::size_t checks = 0;
         for (std::size_t at = 0;

@@ -225,10 +225,10 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
          "the last load "
          "or that render failed",
          [](R& r, Step& st) {
-             // A load is made at the start of a frame; the render of the scene is asked for after
-             // the panels are drawn.
+             // A scene is read on a thread of its own and taken at the start of a frame; the
+             // render of the scene is asked for after the panels are drawn.
              const ViewerState& s = st.s;
-             const bool tried = s.pending_loads.empty();
+             const bool tried = s.pending_loads.empty() && !s.loading;
              if (tried && !s.scene_error.empty())
                  st.fail("the scene did not load: " + s.scene_error);
              // Loaded means the tracer took it too: a method that refuses the scene (Embree past
@@ -262,7 +262,8 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
          "widgets and table "
          "columns unchanged for three frames",
          [](R& r, Step& st) {
-             const bool asked = st.s.select_tabs.empty() && st.s.pending_loads.empty();
+             const bool asked =
+                 st.s.select_tabs.empty() && st.s.pending_loads.empty() && !st.s.loading;
              if (!st.shown.image_current) st.render_failed();
              return r.wait_for(asked && st.shown.image_current && r.same_layout_frames_ >= 2, st.c,
                                "the screen to settle (the view asked for of the current render, "

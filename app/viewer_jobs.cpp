@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <numeric>
 
@@ -23,6 +24,61 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// The scene `spec` names, animated as `animation` says, and its default view (whose probe
+/// rays, for an interior, take a second in a large scene); throws on failure. Runs off the UI
+/// thread (poll_loads()).
+LoadedScene read_scene(const std::string& spec, const std::string& animation) {
+    // An animation file or OBJ sequence names its own geometry.
+    const bool own = animation_has_geometry(spec);
+    LoadedScene loaded{load_animated_scene(own ? "" : spec, own ? spec : animation), {}};
+    if (loaded.animated.scene.triangle_count() == 0)
+        throw InputError(spec + ": the scene has no triangles");
+    loaded.view = default_camera(loaded.animated.scene);
+    return loaded;
+}
+
+/// Makes a scene read by read_scene() the state's.
+void take_scene(ViewerState& s, LoadedScene loaded, const std::string& spec,
+                const CameraOptions& flags, const std::string& animation, bool keep_view) {
+    const bool own = animation_has_geometry(spec);
+    AnimatedScene& animated = loaded.animated;
+    Playback playback;
+    std::shared_ptr<const Scene> scene;
+    if (animated.animation) {
+        playback.frames = std::make_shared<FramePool>(std::move(animated));
+        scene = playback.frames->at(0.0);
+    } else {
+        scene = std::make_shared<const Scene>(std::move(animated.scene));
+    }
+    if (!s.integrator_chosen) s.ui.integrator = default_integrator(*scene);
+    if (!keep_view) {
+        s.scene_camera = loaded.view;
+        s.camera.reset(flags.given() ? choose_camera(*scene, flags) : loaded.view);
+    }
+    // The file's name only: an absolute path wraps the tab's header onto several lines (the
+    // full path is the header's tooltip).
+    s.scene_label = std::filesystem::path(scene->source).filename().string() + ": " +
+                    std::to_string(scene->triangle_count()) + " triangles";
+    if (playback.frames) s.scene_label += ", animated (" + playback.frames->spec() + ")";
+    for (const std::string& w : scene->warnings)
+        std::cerr << "edacrt_viewer: warning: " << printable(w) << "\n";
+    // Playback settings carry over; the frames, the time and the history start over.
+    playback.speed = s.playback.speed;
+    playback.play_scale = s.playback.play_scale;
+    playback.loop = s.playback.loop;
+    playback.motion_blur = s.playback.motion_blur;
+    playback.shutter = s.playback.shutter;
+    playback.update = s.playback.update;
+    playback.playing = playback.frames && s.playback.playing;
+    s.playback = std::move(playback);
+    s.scene = std::move(scene);
+    ++s.scene_number;
+    s.scene_error.clear();
+    s.scene_path = spec;
+    s.animation_spec = own ? "" : animation;
+    s.animation_field = s.playback.frames && !own ? s.playback.frames->spec() : "";
+}
+
 }  // namespace
 
 /// Loads a scene into the state; on failure keeps the previous one and shows the error. The
@@ -30,47 +86,28 @@ using Clock = std::chrono::steady_clock;
 void load_into(ViewerState& s, const std::string& spec, const CameraOptions& flags,
                const std::string& animation, bool keep_view) {
     try {
-        // An animation file or OBJ sequence names its own geometry.
-        const bool own = animation_has_geometry(spec);
-        AnimatedScene animated = load_animated_scene(own ? "" : spec, own ? spec : animation);
-        if (animated.scene.triangle_count() == 0)
-            throw InputError(spec + ": the scene has no triangles");
-        Playback playback;
-        std::shared_ptr<const Scene> scene;
-        if (animated.animation) {
-            playback.frames = std::make_shared<FramePool>(std::move(animated));
-            scene = playback.frames->at(0.0);
-        } else {
-            scene = std::make_shared<const Scene>(std::move(animated.scene));
-        }
-        if (!s.integrator_chosen) s.ui.integrator = default_integrator(*scene);
-        if (!keep_view) {
-            s.scene_camera = default_camera(*scene);
-            s.camera.reset(choose_camera(*scene, flags));
-        }
-        // The file's name only: an absolute path wraps the tab's header onto several lines
-        // (the full path is the header's tooltip).
-        s.scene_label = std::filesystem::path(scene->source).filename().string() + ": " +
-                        std::to_string(scene->triangle_count()) + " triangles";
-        if (playback.frames) s.scene_label += ", animated (" + playback.frames->spec() + ")";
-        for (const std::string& w : scene->warnings)
-            std::cerr << "edacrt_viewer: warning: " << printable(w) << "\n";
-        // Playback settings carry over; the frames, the time and the history start over.
-        playback.speed = s.playback.speed;
-        playback.play_scale = s.playback.play_scale;
-        playback.loop = s.playback.loop;
-        playback.motion_blur = s.playback.motion_blur;
-        playback.shutter = s.playback.shutter;
-        playback.update = s.playback.update;
-        playback.playing = playback.frames && s.playback.playing;
-        s.playback = std::move(playback);
-        s.scene = std::move(scene);
-        s.scene_error.clear();
-        s.scene_path = spec;
-        s.animation_spec = own ? "" : animation;
-        s.animation_field = s.playback.frames && !own ? s.playback.frames->spec() : "";
+        take_scene(s, read_scene(spec, animation), spec, flags, animation, keep_view);
     } catch (const std::exception& e) {
         s.scene_error = e.what();
+    }
+}
+
+void poll_loads(ViewerState& s) {
+    if (s.loading &&
+        s.loading->scene.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        SceneLoad load = std::move(*s.loading);
+        s.loading.reset();
+        try {
+            take_scene(s, load.scene.get(), load.spec, {}, "", false);
+        } catch (const std::exception& e) {
+            s.scene_error = e.what();
+        }
+    }
+    if (!s.loading && !s.pending_loads.empty()) {
+        std::string spec = s.pending_loads.front();
+        s.pending_loads.erase(s.pending_loads.begin());
+        s.loading = SceneLoad{spec, Clock::now(),
+                              std::async(std::launch::async, read_scene, spec, std::string())};
     }
 }
 

@@ -22,6 +22,10 @@ void load_into(ViewerState& state, const std::string& spec,
                const CameraOptions& flags = CameraOptions{}, const std::string& animation = "",
                bool keep_view = false);
 
+/// Once a frame: takes the scene read on its own thread, if it is done (the rules of
+/// load_into(), without camera flags), then starts reading the next scene asked for.
+void poll_loads(ViewerState& state);
+
 /// The request for the current settings; width x height: the image region in framebuffer
 /// pixels.
 RenderRequest make_request(const ViewerState& state, int width, int height);

@@ -172,7 +172,7 @@ class Viewer {
         dt_ = std::chrono::duration<float>(now - clock_.last).count();
         clock_.last = now;
         if (clock_.frames > 5) clock_.slowest = std::max(clock_.slowest, dt_);
-        for (const std::string& spec : std::exchange(s_.pending_loads, {})) load_into(s_, spec);
+        poll_loads(s_);
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -253,6 +253,7 @@ class Viewer {
         draw_timeline(s_);
         draw_help(s_);
         draw_heat_readout(s_);
+        draw_loading(s_);
     }
 
     /// Submit: a changed setting, camera, scene or image region starts a new render.
@@ -312,6 +313,7 @@ class Viewer {
                 } catch (const std::exception& e) {
                     s_.playback.error = e.what();
                 }
+            s_.compared_scene = s_.scene_number;
             jobs_.comparison =
                 std::async(std::launch::async, compare_methods, s_.scene, previous,
                            submitted.camera, submitted.settings.width, submitted.settings.height,
@@ -422,7 +424,9 @@ class Viewer {
         // table columns from the previous frame's contents.
         const bool settled = s_.frame && s_.frame == shown_last_frame_;
         shown_last_frame_ = s_.frame;
-        const bool current = s_.frame && s_.frame->request == request_id_ && !s_.frame->preview;
+        // While a scene asked for is read, the old scene's passes are not what was asked.
+        const bool current = s_.frame && s_.frame->request == request_id_ && !s_.frame->preview &&
+                             !s_.loading && s_.pending_loads.empty();
         const int shown_spp = settled && current ? s_.frame->spp : 0;
         // The image region shows the view asked for of the newest pass received.
         const bool image_current =

@@ -1,7 +1,10 @@
 #pragma once
 // What the panels read and edit. The UI edits `ui`; the viewer turns a changed `ui` (or camera)
 // into a new RenderRequest for the worker.
+#include <chrono>
+#include <future>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -17,6 +20,7 @@
 #include "render/film.h"
 #include "render/render_settings.h"
 #include "render_worker.h"
+#include "scene/animation.h"
 #include "scene/scene.h"
 #include "scene_catalog.h"
 #include "trace/tracer.h"
@@ -137,6 +141,20 @@ struct Playback {
     double compared_time = 0.0;  // the frame the comparison (ViewerState) was measured on
 };
 
+/// A scene as read from its file, with its default view (render/default_camera.h).
+struct LoadedScene {
+    AnimatedScene animated;
+    Camera view;
+};
+
+/// A scene being read on a thread of its own (the list, the path field, a drop): the frames go
+/// on meanwhile, and the image and the Scene tab say so.
+struct SceneLoad {
+    std::string spec;
+    std::chrono::steady_clock::time_point started;
+    std::future<LoadedScene> scene;
+};
+
 struct ViewerState {
     UiSettings ui;
     bool integrator_chosen = false;  // else each scene gets path or ao (default_integrator())
@@ -162,9 +180,12 @@ struct ViewerState {
     bool render_answered = false;  // the worker has published a frame or error for `submitted`
     std::string resolution_error;  // the last resolution refused (too much memory)
     float accepted_resolution_scale = 1.0f;  // the slider returns here after a refusal
-    std::vector<MethodTotals> comparison;
+    std::vector<MethodTotals> comparison;    // of the scene numbered compared_scene
     bool comparing = false;                  // the render pauses meanwhile
     std::vector<std::string> pending_loads;  // from the path field, the list, drops
+    std::optional<SceneLoad> loading;        // the first of them, being read
+    int scene_number = 0;                    // counts the scenes taken
+    int compared_scene = 0;
     bool compare_requested = false;
     int compare_spp = 1;  // camera rays per pixel of the comparison (1, 4 or 16)
 

@@ -26,7 +26,8 @@ HEADING = "## Each method at its best: the switch sweep"
 run = functools.partial(run_checked, tool="sweep")
 SETS = ["camera-1spp", "diffuse", "ao", "shadow"]
 TOLERANCE = 1.10  # a default within 10% of the best variant of every set
-CONFIRM_REPEAT = 15  # frames of the head-to-head run that confirms a better variant
+CONFIRM_REPEAT = 15  # frames of the head-to-head run that confirms better variants
+SETTLE_REPEAT = 45  # frames of the run of a variant still better after it, alone with the default
 
 # Per method, the variants: one switch each, away from the method's defaults. The identity of
 # each (EDACRT: sampled ratios and order, filter skipping; DACRT: area ratios, direction-sign
@@ -83,31 +84,46 @@ def bench_set(set_name):
     return ["--sets", set_name, "--spp", "1"]
 
 
+def head_to_head(args, path, scene, set_, threads, specs, repeat):
+    """One `edacrt bench` of `specs` on one set (or, with --resume, its stored run if it timed
+    exactly these); each spec's median frame time."""
+    stored = json.loads(path.read_text())["results"] if path.exists() else []
+    if not (args.resume and {r["method"] for r in stored} == set(specs)):
+        print(f"sweep: {', '.join(specs[1:])} against {specs[0]} on {scene} {set_}, "
+              f"{threads} thread(s), {repeat} frames", file=sys.stderr, flush=True)
+        run([args.build / "edacrt", "bench", "--scene", scene, "--scenes", args.scenes,
+             *bench_set(set_), "--width", args.size, "--height", args.size,
+             "--repeat", repeat, "--threads", threads, "--methods", ",".join(specs),
+             "--json", path, "-q"])
+    return {r["method"]: r["frame_seconds_median"]
+            for r in json.loads(path.read_text())["results"]}
+
+
 def confirm(args, rows):
     """The best of many noisy variants is biased low (the luckiest of 20), and one slow frame of
     the default's makes every variant of its set look better. Where variants beat their
     method's defaults by more than TOLERANCE, all of them run again with the defaults head to
-    head, on that set alone, for CONFIRM_REPEAT frames, and those ratios replace the sweep's.
-    Returns {(method, threads, scene, set): {variant: ratio}}."""
+    head, on that set alone, for CONFIRM_REPEAT frames. A variant still better by more than
+    TOLERANCE then runs alone with the defaults for SETTLE_REPEAT frames (as many draws of
+    EDACRT's samples: on frames of 5-15 ms one draw's tree can take 0.8-1.3x another's), and
+    that ratio counts. Returns {(method, threads, scene, set): {variant: ratio}}."""
     confirmed = {}
     for key, c in sorted(analyse(rows).items()):
         method, threads, scene, set_ = key
         better = sorted(v for v, ratio in c.items() if 1.0 / ratio > TOLERANCE)
         if not better:
             continue
-        path = args.out / f"confirm-{scene}-{set_}-{threads}t-{method}.json"
-        # A stored run is kept (--resume) only if it timed these variants.
-        stored = json.loads(path.read_text())["results"] if path.exists() else []
-        if not (args.resume and {r["method"] for r in stored} == {method, *better}):
-            print(f"sweep: confirming {', '.join(better)} on {scene} {set_}, "
-                  f"{threads} thread(s)", file=sys.stderr, flush=True)
-            run([args.build / "edacrt", "bench", "--scene", scene, "--scenes", args.scenes,
-                 *bench_set(set_), "--width", args.size, "--height", args.size,
-                 "--repeat", CONFIRM_REPEAT, "--threads", threads,
-                 "--methods", ",".join([method, *better]), "--json", path, "-q"])
-        again = {r["method"]: r["frame_seconds_median"]
-                 for r in json.loads(path.read_text())["results"]}
-        confirmed[key] = {v: again[v] / again[method] for v in better}
+        name = f"{scene}-{set_}-{threads}t-{method}"
+        again = head_to_head(args, args.out / f"confirm-{name}.json", scene, set_, threads,
+                             [method, *better], CONFIRM_REPEAT)
+        ratios = {v: again[v] / again[method] for v in better}
+        for v, ratio in ratios.items():
+            if 1.0 / ratio > TOLERANCE:
+                label = v.split(":", 1)[1].replace("=", "-")
+                alone = head_to_head(args, args.out / f"settle-{name}-{label}.json", scene,
+                                     set_, threads, [method, v], SETTLE_REPEAT)
+                ratios[v] = alone[v] / alone[method]
+        confirmed[key] = ratios
     return confirmed
 
 
@@ -198,7 +214,7 @@ def markdown(args, rows, confirmed, machine, seconds, command, rev):
             beyond.setdefault((m, variant), []).append((c[variant], scene, set_, t))
     if beyond:
         lines += ["", f"**Where a variant beats the defaults by more than {TOLERANCE:.2f}** "
-                  "(after the head-to-head run; the variant's frame time over the default's, "
+                  "(after the head-to-head runs; the variant's frame time over the default's, "
                   "1t/2t for 1 and 2 threads):", "",
                   "| method | variant | sets |", "|---|---|---|"]
         for (m, variant), where in sorted(beyond.items(), key=lambda kv: -len(kv[1])):
@@ -207,7 +223,10 @@ def markdown(args, rows, confirmed, machine, seconds, command, rev):
     lines += ["", f"Where a variant beat the defaults by more than {TOLERANCE:.2f} in the "
               f"sweep, all such variants of the set ran again with the defaults head to head for "
               f"{CONFIRM_REPEAT} frames (the best of some twenty noisy variants is biased low, "
-              "and one slow frame of the default's flatters all of them), and those times count. "
+              "and one slow frame of the default's flatters all of them), and those times count; "
+              f"a variant still better by more than {TOLERANCE:.2f} ran alone with the defaults "
+              f"for {SETTLE_REPEAT} frames (as many draws of EDACRT's samples), and that time "
+              "counts. "
               "On one thread `second-child=after-first` is the default's recursion (split "
               "starts no task there): its ratios show the noise.",
               "", "Per set, the counters behind the times (tests per ray, the defaults): "

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -317,6 +318,49 @@ TEST(ViewerFiles, AManifestThatIsAFifoFallsBackToTheFolder) {
     EXPECT_TRUE(std::any_of(catalog.entries.begin(), catalog.entries.end(), [&](const auto& e) {
         return e.path == (dir.path() / "scenes/b/b.obj").string();
     }));
+}
+
+/// Polls until the scene being read is taken (at most 60 s).
+void finish_loads(ViewerState& s) {
+    for (int i = 0; i < 6000 && (s.loading || !s.pending_loads.empty()); ++i) {
+        poll_loads(s);
+        if (s.loading) s.loading->scene.wait_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_FALSE(s.loading);
+    ASSERT_TRUE(s.pending_loads.empty());
+}
+
+// Scenes asked for are read on a thread of their own, one at a time in the order asked, while
+// the frames go on with the previous scene; a failed read keeps it and shows the error.
+TEST(ViewerFiles, ScenesAreReadOffTheFrameLoopInTheOrderAsked) {
+    ViewerState s;
+    load_into(s, "builtin:cornell");
+    ASSERT_TRUE(s.scene);
+    const std::shared_ptr<const Scene> cornell = s.scene;
+    const int first = s.scene_number;
+    s.pending_loads = {"builtin:sphere:subdiv=2", "/no/such/scene.obj", "builtin:cube:n=2"};
+    poll_loads(s);
+    ASSERT_TRUE(s.loading);
+    EXPECT_EQ(s.loading->spec, "builtin:sphere:subdiv=2");
+    EXPECT_EQ(s.pending_loads.size(), 2u);
+    EXPECT_EQ(s.scene, cornell) << "the previous scene stays while the next is read";
+    // The sphere is taken, then the missing file fails, then the cube is read.
+    s.loading->scene.wait();
+    poll_loads(s);
+    EXPECT_NE(s.scene, cornell);
+    EXPECT_EQ(s.scene_path, "builtin:sphere:subdiv=2");
+    EXPECT_EQ(s.scene_number, first + 1);
+    ASSERT_TRUE(s.loading);
+    EXPECT_EQ(s.loading->spec, "/no/such/scene.obj");
+    s.loading->scene.wait();
+    poll_loads(s);
+    EXPECT_NE(s.scene_error.find("/no/such/scene.obj"), std::string::npos) << s.scene_error;
+    EXPECT_EQ(s.scene_path, "builtin:sphere:subdiv=2") << "a failed read keeps the scene";
+    EXPECT_EQ(s.scene_number, first + 1);
+    finish_loads(s);
+    EXPECT_EQ(s.scene_path, "builtin:cube:n=2");
+    EXPECT_TRUE(s.scene_error.empty()) << "the next load clears the error";
+    EXPECT_EQ(s.scene_number, first + 2);
 }
 
 }  // namespace

@@ -1,9 +1,35 @@
-// Projected wireframes of recursion boxes over the image region, clipped to it.
+// Over the image region: the loading notice, and projected wireframes of recursion boxes
+// (clipped to it).
 #include <imgui.h>
+
+#include <chrono>
+#include <filesystem>
 
 #include "panels.h"
 
 namespace edacrt::app {
+
+void draw_loading(ViewerState& s) {
+    if (!s.loading) return;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - s.loading->started)
+            .count();
+    const std::string name = std::filesystem::path(s.loading->spec).filename().string();
+    const std::string text = "loading " + (name.empty() ? s.loading->spec : name) + "... " +
+                             std::to_string(int(seconds * 10.0) / 10) + "." +
+                             std::to_string(int(seconds * 10.0) % 10) + " s";
+    const Rect& r = s.layout.image;
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const float pad = ImGui::GetStyle().WindowPadding.x;
+    const ImVec2 at(r.x + 0.5f * (r.w - size.x), r.y + 0.5f * (r.h - size.y));
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->AddRectFilled(ImVec2(at.x - pad, at.y - pad),
+                        ImVec2(at.x + size.x + pad, at.y + size.y + pad), IM_COL32(0, 0, 0, 200),
+                        pad);
+    draw->AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
+    s.items.push_back(
+        {"Image/loading", {at.x - pad, at.y - pad, size.x + 2 * pad, size.y + 2 * pad}});
+}
 
 ImVec2 image_to_window(const ViewerState& s, float x, float y, int width, int height) {
     const Rect& r = s.layout.image;

@@ -37,6 +37,10 @@ void draw_batch_chooser(ViewerState& state);
 /// The value under the cursor while a heat map is shown (a tooltip over the image).
 void draw_heat_readout(const ViewerState& state);
 
+/// While a scene is read: its name and the seconds so far, centred over the image region (the
+/// previous scene's image stays under it).
+void draw_loading(ViewerState& state);
+
 /// Draws a box's projected edges over the image region (background draw list, clipped to it).
 void draw_box_overlay(const ViewerState& state, const Analysis& analysis, const Aabb& box,
                       unsigned colour, float thickness = 1.0f);

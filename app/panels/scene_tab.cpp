@@ -2,6 +2,8 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <filesystem>
+
 #include "panels.h"
 
 namespace edacrt::app {
@@ -41,6 +43,12 @@ void draw_scene_tab(ViewerState& s) {
     ImGui::SameLine();
     if (ImGui::Button("Load")) s.pending_loads.push_back(s.scene_path);
     report_item(s, "Scene/load");
+    if (s.loading) {
+        const std::string name = std::filesystem::path(s.loading->spec).filename().string();
+        ImGui::TextDisabled("loading %s...", (name.empty() ? s.loading->spec : name).c_str());
+        report_item(s, "Scene/loading");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", s.loading->spec.c_str());
+    }
     if (!s.scene_error.empty()) error_text(s, "Scene/error", s.scene_error);
     draw_animation_settings(s);
     if (s.scene) {

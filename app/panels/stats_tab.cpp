@@ -103,7 +103,7 @@ void draw_comparison(ViewerState& s) {
                             ? "this frame's camera rays, every method and update, median of 3 "
                               "(render paused)"
                             : "the view's camera rays, every method, median of 3 (render paused)");
-    if (s.comparison.empty()) return;
+    if (s.comparison.empty() || s.compared_scene != s.scene_number) return;  // another scene's
     ImGui::TextDisabled("measured on %d camera ray%s per pixel", s.comparison.front().spp,
                         s.comparison.front().spp == 1 ? "" : "s");
     if (s.playback.frames)

@@ -104,8 +104,7 @@ std::string analysis_json(const ViewerState& s) {
                          (s.batch == BatchId{} ? std::string(" (wait-spp 1 first)")
                                                : std::string(" (wait-analysis first)")));
     }
-    const bool crop = s.batch != BatchId{} &&
-                      (s.analysis->crop_w < batch.width || s.analysis->crop_h < batch.height);
+    const bool crop = s.batch != BatchId{} && s.analysis->cropped();
     const nlohmann::json json = {{"batch", name},
                                  {"method", enum_name(kMethods, s.submitted.method)},
                                  {"scene", s.scene ? s.scene->source : ""},
@@ -161,7 +160,8 @@ std::span<const ScriptVerb> ScriptRunner::verbs() {
          "an EDACRT flag "
          "without \"--\" (set filter-skip off), preset NAME, scene PATH, animate "
          "SPEC, or the "
-         "explorer's level, node, crop and step, the analysed batch (batch camera|bounce:N|"
+         "explorer's level, node, crop (0|1), region (U0,V0,U1,V1|centre) and step, the "
+         "analysed batch (batch camera|bounce:N|"
          "shadow:N|ao)",
          [](R&, Step& st) {
              try {

@@ -94,8 +94,8 @@ class ScriptRunner {
 std::string layout_json(const ViewerState& s);
 
 /// What the Statistics tab shows, as JSON (the script's `write-analysis FILE`): `batch` (its
-/// name), `method`, `scene`, `width`, `height`, `rays`, `crop` (the batch is the rays of a 64x64
-/// crop) and `detail` (stats_json(): the per-level table and per-ray summary). Throws
+/// name), `method`, `scene`, `width`, `height`, `rays`, `crop` (the batch is the rays of a region
+/// of the image) and `detail` (stats_json(): the per-level table and per-ray summary). Throws
 /// InputError while the batch has no statistics (not recorded, stale or failed: the reason).
 std::string analysis_json(const ViewerState& s);
 

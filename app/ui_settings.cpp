@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string_view>
 
@@ -46,6 +47,12 @@ const SetAction kSetActions[] = {
      [](ViewerState& s, const std::string& v) { s.explorer_node = whole_number("node", v); }},
     {"crop",
      [](ViewerState& s, const std::string& v) { s.explorer_crop = whole_number("crop", v) != 0; }},
+    {"region",
+     [](ViewerState& s, const std::string& v) {
+         s.explorer_region = parse_region(v);
+         s.explorer_crop = true;
+         s.analysis_requested = true;  // as a dragged region is recorded
+     }},
     {"batch",
      [](ViewerState& s, const std::string& v) {
          s.batch = parse_batch(v);
@@ -142,6 +149,52 @@ bool analysis_stale(const Analysis& a, const RenderRequest& r, BatchId batch) {
            a.height != r.settings.height || a.seed != r.settings.seed || a.method != r.method ||
            !(a.params == r.params) || !(a.batch == batch) ||
            (!camera && !(a.settings == r.settings));
+}
+
+std::array<int, 4> region_pixels(const ImageRegion& r, int width, int height) {
+    if (r.empty()) {
+        const int w = std::min(64, width), h = std::min(64, height);
+        return {(width - w) / 2, (height - h) / 2, w, h};
+    }
+    // Pixel x's centre x + 0.5 lies in [u0 W, u1 W): x from ceil(u0 W - 0.5).
+    const auto first = [](float f, int n) {
+        return std::clamp(int(std::ceil(f * float(n) - 0.5f)), 0, n - 1);
+    };
+    const int x0 = first(r.u0, width), y0 = first(r.v0, height);
+    const int x1 = std::max(x0 + 1, std::min(width, first(r.u1, width) + (r.u1 >= 1.0f)));
+    const int y1 = std::max(y0 + 1, std::min(height, first(r.v1, height) + (r.v1 >= 1.0f)));
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+ImageRegion parse_region(const std::string& text) {
+    if (text == "centre" || text == "center") return {};
+    ImageRegion r;
+    float* f[] = {&r.u0, &r.v0, &r.u1, &r.v1};
+    std::size_t at = 0;
+    for (int i = 0; i < 4; ++i) {
+        const std::size_t end = i < 3 ? text.find(',', at) : text.size();
+        const std::string part = end == std::string::npos ? "" : text.substr(at, end - at);
+        try {
+            std::size_t used = 0;
+            *f[i] = std::stof(part, &used);
+            if (used != part.size() || !std::isfinite(*f[i])) throw std::invalid_argument(part);
+        } catch (const std::exception&) {
+            throw InputError("region: '" + text +
+                             "' is not U0,V0,U1,V1 (fractions of the image) or centre");
+        }
+        at = end + 1;
+    }
+    if (!(0.0f <= r.u0 && r.u0 < r.u1 && r.u1 <= 1.0f && 0.0f <= r.v0 && r.v0 < r.v1 &&
+          r.v1 <= 1.0f))
+        throw InputError("region: '" + text + "' needs 0 <= U0 < U1 <= 1 and 0 <= V0 < V1 <= 1");
+    return r;
+}
+
+std::string region_text(const ImageRegion& r) {
+    if (r.empty()) return "centre";
+    char text[64];
+    std::snprintf(text, sizeof text, "%.4g,%.4g,%.4g,%.4g", r.u0, r.v0, r.u1, r.v1);
+    return text;
 }
 
 std::vector<RayStats> per_pixel_stats(std::span<const RayStats> rays,

@@ -265,11 +265,16 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
     return out;
 }
 
+std::string region_name(const Analysis& a) {
+    return std::to_string(a.crop_w) + "x" + std::to_string(a.crop_h) + " region at (" +
+           std::to_string(a.crop_x) + ", " + std::to_string(a.crop_y) + ")";
+}
+
 /// Records the recursion of one batch of the first pass of the render in progress (the camera
-/// rays, which the statistics and heat maps show, or another batch), or of its rays in a 64x64
-/// crop at the image centre (a small batch to step through), following one pixel.
+/// rays, which the statistics and heat maps show, or another batch), or of its rays in a region
+/// of the image (a small batch to step through), following one pixel.
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel, bool crop,
-                                        BatchId batch) {
+                                        ImageRegion region, BatchId batch) {
     auto a = std::make_shared<Analysis>();
     a->scene = request.scene;
     a->camera = request.camera;
@@ -281,10 +286,12 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
     a->batch = batch;
     a->settings = request.settings;
     a->pixel = pixel;
-    a->crop_w = crop ? std::min(64, a->width) : a->width;
-    a->crop_h = crop ? std::min(64, a->height) : a->height;
-    a->crop_x = (a->width - a->crop_w) / 2;
-    a->crop_y = (a->height - a->crop_h) / 2;
+    if (crop) {
+        const std::array<int, 4> box = region_pixels(region, a->width, a->height);
+        a->crop_x = box[0], a->crop_y = box[1], a->crop_w = box[2], a->crop_h = box[3];
+    } else {
+        a->crop_w = a->width, a->crop_h = a->height;
+    }
     try {
         const auto tracer = make_tracer(request.method, request.params, request.embree_mode);
         tracer->set_scene(*request.scene);
@@ -313,9 +320,9 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
         }
         captured = {};
         if (rays.empty())
-            throw InputError("no " + batch_name(batch) + " rays in the 64x64 crop at the centre");
+            throw InputError("no " + batch_name(batch) + " rays in the " + region_name(*a));
         check_trace_memory(rays.size(), true, "of batch " + batch_name(batch),
-                           "lower the resolution or record the 64x64 crop");
+                           "lower the resolution or record a region");
         const auto followed = std::find(a->pixels.begin(), a->pixels.end(), std::uint32_t(pixel));
         const std::int64_t follow =
             pixel >= 0 && followed != a->pixels.end() ? followed - a->pixels.begin() : -1;

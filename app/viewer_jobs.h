@@ -50,11 +50,14 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
                                           EdacrtParams params, const RenderWorker* worker);
 
 /// Records the recursion of one batch of the request's first pass (its camera rays, or the
-/// batch the renderer traces for `batch`, taken across the pass's wavefronts), or of the rays of
-/// a 64x64 crop of the image at its centre, following one pixel's (first) ray. A batch the
-/// request's integrator never traces, or none of whose rays were made, is an error.
+/// batch the renderer traces for `batch`, taken across the pass's wavefronts), or, with `crop`,
+/// of its rays in `region` of the image (region_pixels()), following one pixel's (first) ray. A
+/// batch the request's integrator never traces, or none of whose rays were made, is an error.
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel, bool crop,
-                                        BatchId batch = {});
+                                        ImageRegion region = {}, BatchId batch = {});
+
+/// "64x64 region at (608, 368)": the recorded crop in words.
+std::string region_name(const Analysis& analysis);
 
 /// Runs a change of the camera (OrbitCamera throws InputError for one it refuses): the view
 /// is kept and the refusal shown on the status line (the mouse and keys; a script fails).

@@ -207,6 +207,25 @@ class Viewer {
                                      rendered.height - 1);
             s_.follow_pixel = std::int64_t(y) * rendered.width + x;
             s_.analysis_requested = true;
+        } else if (s_.region_picking && !io.WantCaptureMouse) {
+            // The explorer's region: a left drag on the image, instead of moving the camera.
+            const ImVec2 a = io.MouseClickedPos[ImGuiMouseButton_Left], b = io.MousePos;
+            if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && in_image(a)) {
+                const auto u = [&](float x) {
+                    return std::clamp((x - image.x) / image.w, 0.0f, 1.0f);
+                };
+                const auto v = [&](float y) {
+                    return std::clamp((y - image.y) / image.h, 0.0f, 1.0f);
+                };
+                const ImageRegion r{u(std::min(a.x, b.x)), v(std::min(a.y, b.y)),
+                                    u(std::max(a.x, b.x)), v(std::max(a.y, b.y))};
+                if (!r.empty()) {
+                    s_.explorer_region = r;
+                    s_.explorer_crop = true;
+                    s_.analysis_requested = true;
+                    s_.region_picking = false;
+                }
+            }
         } else if (!io.WantCaptureMouse) {
             // Drags that start on the image move the camera.
             const ImVec2 d = io.MouseDelta;
@@ -253,6 +272,7 @@ class Viewer {
         draw_timeline(s_);
         draw_help(s_);
         draw_heat_readout(s_);
+        draw_region(s_);
         draw_loading(s_);
     }
 
@@ -294,7 +314,7 @@ class Viewer {
             s_.analysis_requested = false;
             s_.analysis_running = true;
             jobs_.analysis = std::async(std::launch::async, analyse, submitted, s_.follow_pixel,
-                                        s_.explorer_crop, s_.batch);
+                                        s_.explorer_crop, s_.explorer_region, s_.batch);
         }
         if (ready(jobs_.analysis)) {
             s_.analysis = jobs_.analysis.get();

@@ -1,6 +1,7 @@
 #pragma once
 // What the panels read and edit. The UI edits `ui`; the viewer turns a changed `ui` (or camera)
 // into a new RenderRequest for the worker.
+#include <array>
 #include <chrono>
 #include <future>
 #include <memory>
@@ -74,18 +75,34 @@ struct Analysis {
     Hit hit;                  // that ray's hit (closest, or any for shadow and AO rays)
     bool followed = false;    // the pixel has a ray in the batch
     std::string error;
-    // The batch's rays in this crop of the image (all of it, or 64x64 at the centre to step
-    // through), in the order the renderer traced them, and the image pixel (y * width + x) of
-    // each.
+    // The batch's rays in this crop of the image (all of it, or a region to step through), in
+    // the order the renderer traced them, and the image pixel (y * width + x) of each.
     int crop_x = 0, crop_y = 0, crop_w = 0, crop_h = 0;
     std::vector<std::uint32_t> pixels;
     // Per pixel (width * height), its rays' counts summed (deepest level: the largest): the
     // heat maps of the batch.
     std::vector<RayStats> pixel_stats;
 
+    /// The rays are those of a region, not the whole batch.
+    bool cropped() const { return crop_w < width || crop_h < height; }
+
     /// The image pixel (y * width + x) of ray i of the batch.
     std::size_t pixel_of(std::size_t ray) const { return pixels[ray]; }
 };
+
+/// A region of the image as fractions of its width and height (u to the right, v down).
+struct ImageRegion {
+    float u0 = 0.0f, v0 = 0.0f, u1 = 0.0f, v1 = 0.0f;
+    bool empty() const { return !(u1 > u0 && v1 > v0); }
+};
+
+/// The pixels of `region` in a width x height image (x, y, w, h), at least one: the pixels
+/// whose centres it holds, or the nearest; an empty region is the 64x64 pixels at the centre.
+std::array<int, 4> region_pixels(const ImageRegion& region, int width, int height);
+
+/// The region in the script's and the settings' words: "U0,V0,U1,V1", or "centre" (empty).
+ImageRegion parse_region(const std::string& text);
+std::string region_text(const ImageRegion& region);
 
 /// What the analysis tabs show of ViewerState::batch: its per-level statistics and per-pixel
 /// counts, from the render's first pass (the camera rays) or from the analysis (another batch).
@@ -250,7 +267,9 @@ struct ViewerState {
     int explorer_level = 0;
     std::int32_t explorer_node = -1;  // selected node (its candidate splits are shown)
     std::int32_t hovered_candidate = -1;
-    bool explorer_crop = false;    // record a 64x64 crop at the image centre, not the view
+    bool explorer_crop = false;    // record the rays of explorer_region, not the whole batch
+    ImageRegion explorer_region;   // empty: 64x64 pixels at the centre
+    bool region_picking = false;   // the next left drag on the image sets explorer_region
     bool explorer_tint = true;     // tint the selected node's pixels
     bool stepping = false;         // step-through: the selected node follows `step`
     int step = 0;                  // nodes entered so far, in the recursion's order
@@ -306,7 +325,7 @@ std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info);
 
 /// Applies a script's `set KEY VALUE`: a setting of viewer_settings() (app/settings_table.h),
 /// an EDACRT parameter (its flag without "--"), a preset, or an action (scene, animate, the
-/// explorer's level, node, crop and step, the analysed batch). Throws InputError.
+/// explorer's level, node, crop, region and step, the analysed batch). Throws InputError.
 void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
 
 /// The batch the analysis tabs show (ShownBatch): the first pass's camera rays from the shown

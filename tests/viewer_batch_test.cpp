@@ -53,7 +53,7 @@ TEST(AnalyseBatch, EveryBatchOfThePassIsRecordedWithItsPixels) {
         RenderSettings one = r.settings;
         for (const BatchId b : pass_batches(r.settings)) {
             SCOPED_TRACE(batch_name(b));
-            const auto a = analyse(r, -1, false, b);
+            const auto a = analyse(r, -1, false, {}, b);
             ASSERT_EQ(a->error, "");
             ASSERT_TRUE(a->detail);
             EXPECT_EQ(a->batch, b);
@@ -79,7 +79,7 @@ TEST(AnalyseBatch, TheCropKeepsItsRaysAndThePixelIsFollowedInsideIt) {
     const RenderRequest r = request(100, 80);
     const BatchId bounce{Kind::bounce, 1};
     const std::int64_t centre = 40 * 100 + 50;
-    const auto a = analyse(r, centre, true, bounce);
+    const auto a = analyse(r, centre, true, {}, bounce);
     ASSERT_EQ(a->error, "");
     EXPECT_EQ(a->crop_w, 64);
     EXPECT_EQ(a->crop_h, 64);
@@ -89,7 +89,7 @@ TEST(AnalyseBatch, TheCropKeepsItsRaysAndThePixelIsFollowedInsideIt) {
         ASSERT_TRUE(x >= a->crop_x && x < a->crop_x + 64 && y >= a->crop_y && y < a->crop_y + 64)
             << p;
     }
-    const auto whole = analyse(r, centre, false, bounce);
+    const auto whole = analyse(r, centre, false, {}, bounce);
     EXPECT_LT(a->pixels.size(), whole->pixels.size());
     // The centre's path goes on after the back wall: its bounce ray is followed, the same
     // ray in the crop as in the whole batch.
@@ -98,31 +98,76 @@ TEST(AnalyseBatch, TheCropKeepsItsRaysAndThePixelIsFollowedInsideIt) {
     EXPECT_EQ(a->hit.prim, whole->hit.prim);
     EXPECT_FALSE(a->detail->follow.empty());
     // A pixel outside the crop has no ray in the batch: not followed, not "no hit".
-    const auto outside = analyse(r, 0, true, bounce);
+    const auto outside = analyse(r, 0, true, {}, bounce);
     EXPECT_EQ(outside->error, "");
     EXPECT_FALSE(outside->followed);
     EXPECT_TRUE(outside->detail->follow.empty());
 }
 
+// A region dragged on the image (or `set region`) is the pixels whose centres it holds; the
+// recording keeps that region's rays, in the batch's order, and follows a pixel inside it.
+TEST(AnalyseBatch, ARegionOfTheImageKeepsExactlyItsPixelsRays) {
+    // Pixel centres: x + 0.5 in [u0 W, u1 W).
+    EXPECT_EQ(region_pixels({0.25f, 0.5f, 0.75f, 1.0f}, 100, 80),
+              (std::array<int, 4>{25, 40, 50, 40}));
+    EXPECT_EQ(region_pixels({0.0f, 0.0f, 1.0f, 1.0f}, 100, 80),
+              (std::array<int, 4>{0, 0, 100, 80}));
+    EXPECT_EQ(region_pixels({0.501f, 0.5f, 0.502f, 0.501f}, 100, 80),
+              (std::array<int, 4>{50, 40, 1, 1}))
+        << "a region holding no centre is the nearest pixel";
+    EXPECT_EQ(region_pixels({}, 100, 80), (std::array<int, 4>{18, 8, 64, 64})) << "the centre";
+    EXPECT_EQ(region_pixels({}, 40, 30), (std::array<int, 4>{0, 0, 40, 30}));
+
+    const RenderRequest r = request(100, 80);
+    const BatchId bounce{Kind::bounce, 1};
+    const std::int64_t inside = 50 * 100 + 30;  // (30, 50)
+    const auto a = analyse(r, inside, true, parse_region("0.1,0.5,0.4,0.9"), bounce);
+    ASSERT_EQ(a->error, "");
+    EXPECT_EQ(a->crop_x, 10);
+    EXPECT_EQ(a->crop_y, 40);
+    EXPECT_EQ(a->crop_w, 30);
+    EXPECT_EQ(a->crop_h, 32);
+    EXPECT_TRUE(a->cropped());
+    EXPECT_EQ(region_name(*a), "30x32 region at (10, 40)");
+    const auto whole = analyse(r, inside, false, {}, bounce);
+    EXPECT_FALSE(whole->cropped());
+    std::vector<std::uint32_t> expected;
+    for (const std::uint32_t p : whole->pixels) {
+        const int x = int(p % 100), y = int(p / 100);
+        if (x >= 10 && x < 40 && y >= 40 && y < 72) expected.push_back(p);
+    }
+    ASSERT_FALSE(expected.empty());
+    EXPECT_EQ(a->pixels, expected);
+    ASSERT_TRUE(a->followed);
+    EXPECT_EQ(a->ray.org, whole->ray.org);
+    // The script's words: four fractions in order, or centre.
+    for (const char* bad : {"0.5,0.5,0.4,0.9", "0,0,1", "0,0,1,1.5", "a,b,c,d", "0,0,1,1,1"})
+        EXPECT_NE(test::error_of([&] { parse_region(bad); }).find("region: '"), std::string::npos)
+            << bad;
+    EXPECT_TRUE(parse_region("centre").empty());
+    EXPECT_EQ(region_text(parse_region("0.1,0.5,0.4,0.9")), "0.1,0.5,0.4,0.9");
+    EXPECT_EQ(region_text({}), "centre");
+}
+
 TEST(AnalyseBatch, ABatchThePassNeverTracesIsAnErrorNotACrash) {
     const RenderRequest r = request(24, 16);
-    EXPECT_NE(analyse(r, -1, false, {Kind::ao, 0})->error.find("only the ao integrator"),
+    EXPECT_NE(analyse(r, -1, false, {}, {Kind::ao, 0})->error.find("only the ao integrator"),
               std::string::npos);
-    EXPECT_NE(analyse(r, -1, false, {Kind::bounce, 4})->error.find("max-depth 3"),
+    EXPECT_NE(analyse(r, -1, false, {}, {Kind::bounce, 4})->error.find("max-depth 3"),
               std::string::npos);
-    EXPECT_EQ(analyse(r, -1, false, {Kind::bounce, 3})->error, "");
+    EXPECT_EQ(analyse(r, -1, false, {}, {Kind::bounce, 3})->error, "");
     const RenderRequest primary = request(24, 16, Integrator::primary);
-    EXPECT_NE(analyse(primary, -1, false, {Kind::shadow, 0})->error, "");
+    EXPECT_NE(analyse(primary, -1, false, {}, {Kind::shadow, 0})->error, "");
 }
 
 TEST(AnalyseBatch, ARecordingIsStaleForAnotherBatchOrAnotherPass) {
     RenderRequest r = request(24, 16);
     const BatchId bounce{Kind::bounce, 1};
-    const auto a = analyse(r, -1, false, bounce);
+    const auto a = analyse(r, -1, false, {}, bounce);
     EXPECT_FALSE(analysis_stale(*a, r, bounce));
     EXPECT_TRUE(analysis_stale(*a, r, BatchId{}));
     EXPECT_TRUE(analysis_stale(*a, r, {Kind::bounce, 2}));
-    const auto camera = analyse(r, -1, false, BatchId{});
+    const auto camera = analyse(r, -1, false, {}, BatchId{});
     r.settings.max_depth = 5;  // another path: later batches change, camera rays do not
     EXPECT_TRUE(analysis_stale(*a, r, bounce));
     EXPECT_FALSE(analysis_stale(*camera, r, BatchId{}));
@@ -167,7 +212,7 @@ TEST(AnalyseBatch, TheTabsShowTheChosenBatchAndWriteAnalysisWritesIt) {
     EXPECT_EQ(s.batch, (BatchId{Kind::shadow, 1}));
     EXPECT_TRUE(s.analysis_requested);
     EXPECT_EQ(shown_batch(s).detail, nullptr);
-    s.analysis = analyse(s.submitted, -1, false, s.batch);
+    s.analysis = analyse(s.submitted, -1, false, {}, s.batch);
     s.analysis_stale = analysis_stale(*s.analysis, s.submitted, s.batch);
     ASSERT_EQ(s.analysis->error, "");
     const ShownBatch shown = shown_batch(s);
@@ -184,7 +229,7 @@ TEST(AnalyseBatch, TheTabsShowTheChosenBatchAndWriteAnalysisWritesIt) {
     s.analysis_stale = true;
     EXPECT_EQ(shown_batch(s).detail, nullptr);
     apply_setting(s, "batch", "ao");
-    s.analysis = analyse(s.submitted, -1, false, s.batch);
+    s.analysis = analyse(s.submitted, -1, false, {}, s.batch);
     s.analysis_stale = false;
     EXPECT_NE(test::error_of([&] { analysis_json(s); }).find("only the ao integrator"),
               std::string::npos);

@@ -32,6 +32,7 @@ void draw_help(ViewerState& s) {
         {"Space", "play / pause an animation (the timeline under the image)"},
         {"Left / Right", "an animation 1/24 s back / on"},
         {"click (picking)", "follow a pixel's ray (Traversal tab)"},
+        {"drag (drag a region)", "the region to record and step through (Recursion tab)"},
     };
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_RowBg)) {
         for (const auto& [key, what] : kKeys) {

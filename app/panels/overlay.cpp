@@ -2,12 +2,36 @@
 // (clipped to it).
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
 #include "panels.h"
 
 namespace edacrt::app {
+
+void draw_region(ViewerState& s) {
+    const Rect& r = s.layout.image;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 a = io.MouseClickedPos[ImGuiMouseButton_Left], b = io.MousePos;
+    const bool in_image = a.x >= r.x && a.y >= r.y && a.x < r.right() && a.y < r.bottom();
+    if (s.region_picking && ImGui::IsMouseDown(ImGuiMouseButton_Left) && in_image &&
+        !io.WantCaptureMouse) {
+        draw->PushClipRect(ImVec2(r.x, r.y), ImVec2(r.right(), r.bottom()), true);
+        draw->AddRect(ImVec2(std::min(a.x, b.x), std::min(a.y, b.y)),
+                      ImVec2(std::max(a.x, b.x), std::max(a.y, b.y)), IM_COL32(80, 220, 255, 255),
+                      0.0f, 0, 2.0f);
+        draw->PopClipRect();
+    }
+    const Analysis* an = s.analysis.get();
+    if (!s.recursion_shown || !an || !an->cropped() || s.analysis_stale) return;
+    const ImVec2 lo = image_to_window(s, float(an->crop_x), float(an->crop_y), an->width,
+                                      an->height),
+                 hi = image_to_window(s, float(an->crop_x + an->crop_w),
+                                      float(an->crop_y + an->crop_h), an->width, an->height);
+    draw->AddRect(lo, hi, IM_COL32(80, 220, 255, 200), 0.0f, 0, 1.0f);
+}
 
 void draw_loading(ViewerState& s) {
     if (!s.loading) return;

@@ -37,6 +37,10 @@ void draw_batch_chooser(ViewerState& state);
 /// The value under the cursor while a heat map is shown (a tooltip over the image).
 void draw_heat_readout(const ViewerState& state);
 
+/// The explorer's region over the image: the rectangle being dragged (region picking), and,
+/// while the Recursion tab shows a recording of a region, that region.
+void draw_region(ViewerState& state);
+
 /// While a scene is read: its name and the seconds so far, centred over the image region (the
 /// previous scene's image stays under it).
 void draw_loading(ViewerState& state);

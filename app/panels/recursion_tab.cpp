@@ -11,6 +11,7 @@
 
 #include "panels.h"
 #include "util/hash_random.h"
+#include "viewer_jobs.h"
 
 namespace edacrt::app {
 namespace {
@@ -146,8 +147,14 @@ void draw_recursion_tab(ViewerState& s) {
     ImGui::SameLine();
     if (ImGui::RadioButton("the whole batch", !s.explorer_crop)) s.explorer_crop = false;
     ImGui::SameLine();
-    if (ImGui::RadioButton("its 64x64 crop (to step through)", s.explorer_crop))
-        s.explorer_crop = true;
+    if (ImGui::RadioButton("a region (to step through)", s.explorer_crop)) s.explorer_crop = true;
+    ImGui::SameLine();
+    if (ImGui::Button(s.region_picking ? "drag on the image..." : "drag a region"))
+        s.region_picking = !s.region_picking;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "the next left drag on the image chooses the region, instead of moving the camera "
+            "(without one: 64x64 pixels at the centre); `set region U0,V0,U1,V1` in a script");
     ImGui::SameLine();
     ImGui::Checkbox("tint pixels", &s.explorer_tint);
     const Analysis* a = s.analysis.get();
@@ -167,9 +174,9 @@ void draw_recursion_tab(ViewerState& s) {
     }
     ImGui::TextDisabled("recorded: %zu %s rays of the first pass (%s), %zu nodes",
                         a->detail->rays.size(), batch_name(a->batch).c_str(),
-                        a->crop_w == a->width && a->crop_h == a->height
-                            ? "the whole view, the Statistics tab's batch"
-                            : "those in a 64x64 crop at the centre, a batch of their own",
+                        a->cropped()
+                            ? ("those in the " + region_name(*a) + ", a batch of their own").c_str()
+                            : "the whole view, the Statistics tab's batch",
                         a->detail->nodes.size());
     step_through(s, *a);
     const auto& nodes = a->detail->nodes;

@@ -176,9 +176,7 @@ void draw_stats_tab(ViewerState& s) {
         ImGui::Text("%s: the first pass's %zu %s rays (%dx%d%s), one batch",
                     std::string(enum_name(kMethods, s.submitted.method)).c_str(),
                     detail->rays.size(), batch_name(s.batch).c_str(), batch.width, batch.height,
-                    s.analysis->crop_w < batch.width || s.analysis->crop_h < batch.height
-                        ? ", the 64x64 crop"
-                        : "");
+                    s.analysis->cropped() ? (", the " + region_name(*s.analysis)).c_str() : "");
     ImGui::Text("%.1f ray-box and %.1f ray-triangle tests per ray", double(box) / rays,
                 double(tri) / rays);
     if (!levels.empty())

@@ -35,7 +35,7 @@ void draw_traversal_tab(ViewerState& s) {
                              y < a->crop_y + a->crop_h;
         ImGui::Text("pixel (%d, %d): no %s ray %s", x, y, batch_name(a->batch).c_str(),
                     in_crop ? "(its path ended before)"
-                            : "in the recorded batch: it lies outside the 64x64 crop");
+                            : "in the recorded batch: it lies outside the recorded region");
         return;
     }
     const bool any = batch_query(a->batch) == Query::any;

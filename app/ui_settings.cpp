@@ -53,6 +53,12 @@ const SetAction kSetActions[] = {
          s.explorer_crop = true;
          s.analysis_requested = true;  // as a dragged region is recorded
      }},
+    {"against",
+     [](ViewerState& s, const std::string& v) {
+         if (v != "none") preset_params(v);  // throws for an unknown preset
+         s.against = v == "none" ? "" : v;
+         s.analysis_requested = true;
+     }},
     {"batch",
      [](ViewerState& s, const std::string& v) {
          s.batch = parse_batch(v);

@@ -274,7 +274,8 @@ std::string region_name(const Analysis& a) {
 /// rays, which the statistics and heat maps show, or another batch), or of its rays in a region
 /// of the image (a small batch to step through), following one pixel.
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel, bool crop,
-                                        ImageRegion region, BatchId batch) {
+                                        ImageRegion region, BatchId batch,
+                                        const std::string& against) {
     auto a = std::make_shared<Analysis>();
     a->scene = request.scene;
     a->camera = request.camera;
@@ -338,6 +339,17 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
             a->followed = true;
         }
         a->pixel_stats = per_pixel_stats(detail->rays, a->pixels, a->width, a->height);
+        if (!against.empty() && !detail->nodes.empty()) {
+            const auto other = make_tracer(Method::edacrt, preset_params(against));
+            other->set_scene(*request.scene);
+            auto b = std::make_shared<TraceDetail>();
+            b->max_nodes = detail->max_nodes;
+            std::vector<Hit> other_hits(rays.size());
+            other->trace(rays, other_hits, batch_query(batch), b.get());
+            a->against = against;
+            a->differences = first_differences(*detail, *b);
+            a->against_detail = std::move(b);
+        }
         a->detail = std::move(detail);
     } catch (const std::exception& e) {
         a->error = e.what();

@@ -51,10 +51,13 @@ std::vector<MethodTotals> compare_methods(std::shared_ptr<const Scene> scene,
 
 /// Records the recursion of one batch of the request's first pass (its camera rays, or the
 /// batch the renderer traces for `batch`, taken across the pass's wavefronts), or, with `crop`,
-/// of its rays in `region` of the image (region_pixels()), following one pixel's (first) ray. A
-/// batch the request's integrator never traces, or none of whose rays were made, is an error.
+/// of its rays in `region` of the image (region_pixels()), following one pixel's (first) ray;
+/// with `against` (a preset name), the same rays again by EDACRT with that preset, and where
+/// the two recursions first decide differently. A batch the request's integrator never traces,
+/// or none of whose rays were made, is an error.
 std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64_t pixel, bool crop,
-                                        ImageRegion region = {}, BatchId batch = {});
+                                        ImageRegion region = {}, BatchId batch = {},
+                                        const std::string& against = "");
 
 /// "64x64 region at (608, 368)": the recorded crop in words.
 std::string region_name(const Analysis& analysis);

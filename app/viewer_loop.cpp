@@ -314,7 +314,7 @@ class Viewer {
             s_.analysis_requested = false;
             s_.analysis_running = true;
             jobs_.analysis = std::async(std::launch::async, analyse, submitted, s_.follow_pixel,
-                                        s_.explorer_crop, s_.explorer_region, s_.batch);
+                                        s_.explorer_crop, s_.explorer_region, s_.batch, s_.against);
         }
         if (ready(jobs_.analysis)) {
             s_.analysis = jobs_.analysis.get();

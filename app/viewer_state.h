@@ -17,6 +17,7 @@
 #include "key_presses.h"
 #include "layout.h"
 #include "orbit_camera.h"
+#include "recursion_diff.h"
 #include "render/batch_capture.h"
 #include "render/film.h"
 #include "render/render_settings.h"
@@ -82,6 +83,12 @@ struct Analysis {
     // Per pixel (width * height), its rays' counts summed (deepest level: the largest): the
     // heat maps of the batch.
     std::vector<RayStats> pixel_stats;
+
+    // The same rays traced by a second recursion (the Recursion tab's "against": a preset,
+    // empty for none): its levels and nodes, and where its decisions first differ from these.
+    std::string against;
+    std::shared_ptr<const TraceDetail> against_detail;
+    std::vector<DecisionDifference> differences;
 
     /// The rays are those of a region, not the whole batch.
     bool cropped() const { return crop_w < width || crop_h < height; }
@@ -270,6 +277,7 @@ struct ViewerState {
     bool explorer_crop = false;    // record the rays of explorer_region, not the whole batch
     ImageRegion explorer_region;   // empty: 64x64 pixels at the centre
     bool region_picking = false;   // the next left drag on the image sets explorer_region
+    std::string against;           // a preset the recording is compared with (empty: none)
     bool explorer_tint = true;     // tint the selected node's pixels
     bool stepping = false;         // step-through: the selected node follows `step`
     int step = 0;                  // nodes entered so far, in the recursion's order

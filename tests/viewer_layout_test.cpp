@@ -235,7 +235,7 @@ TEST(CommandLine, RunsAsPastedFromAnotherFolder) {
 }
 
 TEST(AnalysisTables, EveryColumnExplainsItself) {
-    EXPECT_EQ(all_table_columns().size(), 6u);
+    EXPECT_EQ(all_table_columns().size(), 7u);
     for (std::span<const Column> table : all_table_columns()) {
         ASSERT_FALSE(table.empty());
         std::set<std::string> names;
@@ -248,7 +248,8 @@ TEST(AnalysisTables, EveryColumnExplainsItself) {
             EXPECT_EQ(help.back(), '.');
         }
     }
-    EXPECT_EQ(level_columns().size(), 17u);  // the Statistics table draws 17 cells per row
+    EXPECT_EQ(level_columns().size(), 17u);   // the Statistics table draws 17 cells per row
+    EXPECT_EQ(against_columns().size(), 7u);  // the level, then A and B of three figures
     // The compact set keeps what the paper's mechanism turns on: skipped filters, sampling and
     // filter box tests, triangle tests, both alphas and the time.
     std::set<std::string> compact;

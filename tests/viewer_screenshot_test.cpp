@@ -512,7 +512,9 @@ TEST(ViewerScreenshots, NoPanelCoversTheImageAndNoTableIsClippedAtTwoWindowSizes
         script += std::string("tab ") + tab + "\nwait-settled\ncheck-layout\n";
     for (const char* tab : {"Statistics", "Heat_map", "Recursion", "Traversal", "Frames"})
         script += std::string("tab ") + tab + "\nwait-settled\ncheck-layout\n";
-    script += "set node 1\ntab Recursion\nwait-settled\ncheck-layout\n";
+    // The explorer against DACRT: its level table and differences too.
+    script +=
+        "set against dacrt\nwait-analysis\nset node 1\ntab Recursion\nwait-settled\ncheck-layout\n";
     script +=
         "help on\nwait-settled\ncheck-layout\nhelp off\nset analysis-height 0.7\ntab "
         "Statistics\nwait-settled\ncheck-layout\nanalysis closed\nwait-settled\n"

@@ -124,8 +124,18 @@ constexpr Column kVisits[] = {
     {"right", "The same, at the right child."},
 };
 
-constexpr std::array<std::span<const Column>, 6> kTables = {kLevels,     kAlphaErrors, kComparison,
-                                                            kCandidates, kNodes,       kVisits};
+constexpr Column kAgainst[] = {
+    {"level", "Recursion depth (0: the root); the last row is the total."},
+    {"nodes A", "Nodes of the level in the recording (A: the method and parameters in force)."},
+    {"nodes B", "Nodes of the level in the recursion it is compared with (B: the preset chosen)."},
+    {"box A", "Ray-box tests per ray of the batch at this level, A (sampling and filtering)."},
+    {"box B", "Ray-box tests per ray of the batch at this level, B."},
+    {"tri A", "Ray-triangle tests per ray of the batch at this level, A (leaves)."},
+    {"tri B", "Ray-triangle tests per ray of the batch at this level, B."},
+};
+
+constexpr std::array<std::span<const Column>, 7> kTables = {
+    kLevels, kAlphaErrors, kComparison, kCandidates, kNodes, kVisits, kAgainst};
 
 }  // namespace
 
@@ -135,6 +145,7 @@ std::span<const Column> comparison_columns() { return kComparison; }
 std::span<const Column> candidate_columns() { return kCandidates; }
 std::span<const Column> node_columns() { return kNodes; }
 std::span<const Column> visit_columns() { return kVisits; }
+std::span<const Column> against_columns() { return kAgainst; }
 std::span<const std::span<const Column>> all_table_columns() { return kTables; }
 
 }  // namespace edacrt::app

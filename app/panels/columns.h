@@ -23,6 +23,8 @@ std::span<const Column> candidate_columns();
 std::span<const Column> node_columns();
 /// Traversal: the nodes one ray entered.
 std::span<const Column> visit_columns();
+/// Recursion: two recursions of the same rays, level by level.
+std::span<const Column> against_columns();
 
 /// Every table above, for the test that each column explains itself.
 std::span<const std::span<const Column>> all_table_columns();

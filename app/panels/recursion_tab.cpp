@@ -139,6 +139,98 @@ void step_through(ViewerState& s, const Analysis& a) {
     s.explorer_node = s.step;
 }
 
+/// The combo of the recursion the recording is compared with: none, or a preset.
+void against_combo(ViewerState& s) {
+    ImGui::SetNextItemWidth(ImGui::CalcTextSize("default").x + ImGui::GetFrameHeight() * 2.0f);
+    if (ImGui::BeginCombo("against", s.against.empty() ? "none" : s.against.c_str())) {
+        std::vector<std::string> choices = {"none"};
+        for (const std::string_view name : preset_names()) choices.emplace_back(name);
+        for (const std::string& name : choices) {
+            const std::string value = name == "none" ? "" : name;
+            if (ImGui::Selectable(name.c_str(), s.against == value)) {
+                s.against = value;
+                s.analysis_requested = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "records the same rays again by EDACRT with this preset (B; dacrt: DACRT as Mora "
+            "2011 / Afra 2012 define it) beside the recording (A: the method and parameters "
+            "in force): their levels side by side, and the nodes where their decisions first "
+            "differ (`set against PRESET|none`)");
+}
+
+/// A and B level by level (tests per ray of the batch), and the node pairs where the two
+/// recursions first decide differently; a click selects A's node.
+void against_tables(ViewerState& s, const Analysis& a) {
+    const TraceDetail &da = *a.detail, &db = *a.against_detail;
+    const double rays = double(std::max<std::size_t>(1, da.rays.size()));
+    ImGui::Text("A: %s, B: EDACRT with the %s preset, on the same %zu rays",
+                std::string(enum_name(kMethods, a.method)).c_str(), a.against.c_str(),
+                da.rays.size());
+    const std::size_t levels = std::max(da.levels.size(), db.levels.size());
+    if (ImGui::BeginTable("against", int(against_columns().size()),
+                          ImGuiTableFlags_Borders | ImGuiTableFlags_ScrollY |
+                              ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                          ImVec2(0, 8.0f * ImGui::GetFrameHeightWithSpacing()))) {
+        table_headers(against_columns(), 1);
+        LevelStats ta, tb;
+        const auto row = [&](const char* label, const LevelStats* la, const LevelStats* lb) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            cell_text("%s", label);
+            for (const LevelStats* l : {la, lb}) {
+                ImGui::TableNextColumn();
+                if (l) cell_text("%llu", (unsigned long long)l->nodes);
+            }
+            for (int box = 1; box >= 0; --box)
+                for (const LevelStats* l : {la, lb}) {
+                    ImGui::TableNextColumn();
+                    if (l)
+                        cell_text("%.2f",
+                                  double(box ? l->ray_box_tests : l->ray_triangle_tests) / rays);
+                }
+        };
+        const auto add = [](LevelStats& t, const LevelStats& l) {
+            t.nodes += l.nodes;
+            t.ray_box_tests += l.ray_box_tests;
+            t.ray_triangle_tests += l.ray_triangle_tests;
+        };
+        for (std::size_t i = 0; i < levels; ++i) {
+            const LevelStats* la = i < da.levels.size() ? &da.levels[i] : nullptr;
+            const LevelStats* lb = i < db.levels.size() ? &db.levels[i] : nullptr;
+            if (la) add(ta, *la);
+            if (lb) add(tb, *lb);
+            row(std::to_string(i).c_str(), la, lb);
+        }
+        row("total", &ta, &tb);
+        ImGui::EndTable();
+    }
+    if (a.differences.empty()) {
+        ImGui::TextDisabled("the two recursions decide alike at every node recorded in both");
+        return;
+    }
+    ImGui::Text("decisions first differ at %zu node%s%s (A's node, B's, depth):",
+                a.differences.size(), a.differences.size() == 1 ? "" : "s",
+                a.differences.size() >= 200 ? " (the first 200)" : "");
+    if (ImGui::BeginChild("differences", ImVec2(0, 5.0f * ImGui::GetTextLineHeightWithSpacing()),
+                          true)) {
+        for (const DecisionDifference& d : a.differences) {
+            const std::string line = "node " + std::to_string(d.node_a) + " / " +
+                                     std::to_string(d.node_b) + ", depth " +
+                                     std::to_string(d.depth) + ": " + d.what;
+            if (ImGui::Selectable(line.c_str(), s.explorer_node == d.node_a)) {
+                s.explorer_node = d.node_a;
+                s.explorer_level = d.depth;
+                s.stepping = false;
+            }
+        }
+    }
+    ImGui::EndChild();
+}
+
 }  // namespace
 
 void draw_recursion_tab(ViewerState& s) {
@@ -157,6 +249,8 @@ void draw_recursion_tab(ViewerState& s) {
             "(without one: 64x64 pixels at the centre); `set region U0,V0,U1,V1` in a script");
     ImGui::SameLine();
     ImGui::Checkbox("tint pixels", &s.explorer_tint);
+    ImGui::SameLine();
+    against_combo(s);
     const Analysis* a = s.analysis.get();
     if (!a || !a->error.empty() || !a->detail || a->detail->nodes.empty()) {
         if (a && !a->error.empty())
@@ -178,6 +272,8 @@ void draw_recursion_tab(ViewerState& s) {
                             ? ("those in the " + region_name(*a) + ", a batch of their own").c_str()
                             : "the whole view, the Statistics tab's batch",
                         a->detail->nodes.size());
+    if (a->against_detail && ImGui::CollapsingHeader("A against B", ImGuiTreeNodeFlags_DefaultOpen))
+        against_tables(s, *a);
     step_through(s, *a);
     const auto& nodes = a->detail->nodes;
     int deepest = 0;

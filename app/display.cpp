@@ -94,12 +94,13 @@ void Display::draw_tint() const {
     glDisable(GL_BLEND);
 }
 
-void Display::draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const {
+void Display::draw(bool heat, const Tone& tone, float heat_max, bool heat_log,
+                   bool difference) const {
     glUseProgram(program_);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, heat ? heat_texture_ : render_texture_);
     glUniform1i(glGetUniformLocation(program_, "image"), 0);
-    glUniform1i(glGetUniformLocation(program_, "mode"), heat ? 1 : 0);
+    glUniform1i(glGetUniformLocation(program_, "mode"), heat ? (difference ? 3 : 1) : 0);
     glUniform1f(glGetUniformLocation(program_, "exposure"), tone.exposure);
     glUniform1i(glGetUniformLocation(program_, "tone_map"), int(tone.tone_map));
     glUniform1f(glGetUniformLocation(program_, "heat_max"), heat_max);

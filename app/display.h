@@ -26,8 +26,10 @@ class Display {
         float exposure = 0.0f;
         ToneMap tone_map = ToneMap::clamp;  // the shader's tone_map is its number
     };
-    /// Draws the image over the whole viewport.
-    void draw(bool heat, const Tone& tone, float heat_max, bool heat_log) const;
+    /// Draws the image over the whole viewport: the render, or the heat map (turbo up to
+    /// heat_max; a `difference` in a diverging ramp, blue below 0 and red above).
+    void draw(bool heat, const Tone& tone, float heat_max, bool heat_log,
+              bool difference = false) const;
     void draw_tint() const;
 
   private:

@@ -1,6 +1,7 @@
 #include "heatmap.h"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/common.hpp>
 
 namespace edacrt::app {
@@ -39,6 +40,12 @@ glm::vec3 turbo(float t) {
                         glm::vec3(-152.94239396f, 4.27729857f, -89.90310912f) * t4 +
                         glm::vec3(59.28637943f, 2.82956604f, 27.34824973f) * t5;
     return glm::clamp(c, 0.0f, 1.0f);
+}
+
+glm::vec3 diverging(float t) {
+    const glm::vec3 end = t < 0.0f ? glm::vec3(0.23f, 0.45f, 0.95f) : glm::vec3(0.95f, 0.3f, 0.2f);
+    const float f = std::min(1.0f, std::abs(t));
+    return glm::vec3(1.0f) + f * (end - glm::vec3(1.0f));
 }
 
 }  // namespace edacrt::app

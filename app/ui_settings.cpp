@@ -59,6 +59,8 @@ const SetAction kSetActions[] = {
          s.against = v == "none" ? "" : v;
          s.analysis_requested = true;
      }},
+    {"heat-of",
+     [](ViewerState& s, const std::string& v) { s.heat_of = parse_enum_or_throw(kHeatOf, v); }},
     {"batch",
      [](ViewerState& s, const std::string& v) {
          s.batch = parse_batch(v);
@@ -217,6 +219,32 @@ std::vector<RayStats> per_pixel_stats(std::span<const RayStats> rays,
             std::uint16_t(std::min(65535u, unsigned(p.order_misses) + rays[i].order_misses));
     }
     return out;
+}
+
+HeatImage heat_image(const ViewerState& s) {
+    HeatImage h;
+    const Analysis* a = s.analysis.get();
+    if (s.view == View::render) return h;
+    if (s.heat_of != HeatOf::a && a && a->against_detail && !s.analysis_stale) {
+        std::vector<float> b = heat_values(a->against_pixel_stats, s.view);
+        if (s.heat_of == HeatOf::difference) {
+            const std::vector<float> values_a = heat_values(a->pixel_stats, s.view);
+            for (std::size_t i = 0; i < b.size() && i < values_a.size(); ++i) b[i] -= values_a[i];
+            h.difference = true;
+        }
+        h.values = std::move(b);
+        h.width = a->width;
+        h.height = a->height;
+        h.source = s.analysis;
+        return h;
+    }
+    const ShownBatch batch = shown_batch(s);
+    if (!batch.detail || batch.pixels.empty()) return h;
+    h.values = heat_values(batch.pixels, s.view);
+    h.width = batch.width;
+    h.height = batch.height;
+    h.source = batch.source;
+    return h;
 }
 
 ShownBatch shown_batch(const ViewerState& s) {

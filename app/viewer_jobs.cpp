@@ -347,6 +347,7 @@ std::shared_ptr<const Analysis> analyse(const RenderRequest& request, std::int64
             std::vector<Hit> other_hits(rays.size());
             other->trace(rays, other_hits, batch_query(batch), b.get());
             a->against = against;
+            a->against_pixel_stats = per_pixel_stats(b->rays, a->pixels, a->width, a->height);
             a->differences = first_differences(*detail, *b);
             a->against_detail = std::move(b);
         }

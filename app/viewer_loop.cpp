@@ -351,15 +351,19 @@ class Viewer {
             display_.upload_render(s_.frame->image);
             u.frame = s_.frame;
         }
-        // The heat map of the analysed batch: the frame's camera rays, or a recorded batch.
-        const ShownBatch batch = shown_batch(s_);
-        if (s_.view != View::render && batch.detail && !batch.pixels.empty() &&
-            (batch.source != u.heat_source || s_.view != u.view)) {
-            const std::vector<float> values = heat_values(batch.pixels, s_.view);
-            u.heat_max = std::max(1.0f, *std::max_element(values.begin(), values.end()));
-            display_.upload_heat(values, batch.width, batch.height);
-            u.heat_source = batch.source;
+        // The heat map of the analysed batch (the frame's camera rays, or a recorded batch),
+        // or of the recursion it is compared with, or of their difference.
+        const HeatImage heat = heat_image(s_);
+        if (!heat.values.empty() &&
+            (heat.source != u.heat_source || s_.view != u.view || s_.heat_of != u.heat_of)) {
+            float largest = 0.0f;
+            for (const float v : heat.values) largest = std::max(largest, std::abs(v));
+            u.heat_max = std::max(1.0f, largest);
+            display_.upload_heat(heat.values, heat.width, heat.height);
+            u.heat_source = heat.source;
             u.view = s_.view;
+            u.heat_of = s_.heat_of;
+            u.heat_difference = heat.difference;
         }
         // The selected node's pixels, and in step-through the hits found so far.
         u.tint = s_.recursion_shown && s_.explorer_tint && s_.analysis && !s_.analysis_stale &&
@@ -373,8 +377,8 @@ class Viewer {
                 u.tint_key = key;
             }
         }
-        u.heat = s_.view != View::render && batch.detail && batch.source == u.heat_source &&
-                 u.view == s_.view;
+        u.heat = !heat.values.empty() && heat.source == u.heat_source && u.view == s_.view &&
+                 u.heat_of == s_.heat_of;
     }
 
     /// Draw: the image in its region (the render has the region's aspect), the tint, and (in
@@ -387,8 +391,8 @@ class Viewer {
         glClear(GL_COLOR_BUFFER_BIT);
         glViewport(region.x, screen_.height - region.y - region.h, region.w, region.h);
         if (s_.frame)
-            display_.draw(uploads_.heat, {s_.exposure, s_.tone_map}, uploads_.heat_max,
-                          s_.heat_log);
+            display_.draw(uploads_.heat, {s_.exposure, s_.tone_map}, uploads_.heat_max, s_.heat_log,
+                          uploads_.heat_difference);
         if (uploads_.tint) display_.draw_tint();
         glViewport(0, 0, screen_.width, screen_.height);
     }
@@ -520,10 +524,12 @@ class Viewer {
     struct Uploads {
         std::shared_ptr<const Frame> frame;
         View view = View::render;                 // of the heat map
-        std::shared_ptr<const void> heat_source;  // ShownBatch::source of the heat map
-        float heat_max = 1.0f;
-        bool heat = false;  // the heat map of the view asked for is uploaded
-        bool tint = false;  // the explorer's tint is shown
+        std::shared_ptr<const void> heat_source;  // HeatImage::source of the heat map
+        HeatOf heat_of = HeatOf::a;
+        bool heat_difference = false;  // signed values: B - A
+        float heat_max = 1.0f;         // the largest |value|
+        bool heat = false;             // the heat map of the view asked for is uploaded
+        bool tint = false;             // the explorer's tint is shown
         std::tuple<const Analysis*, std::int32_t, int> tint_key{nullptr, -1, -1};
     } uploads_;
     // script: the pass on screen in the last frame.

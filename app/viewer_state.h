@@ -88,6 +88,7 @@ struct Analysis {
     // empty for none): its levels and nodes, and where its decisions first differ from these.
     std::string against;
     std::shared_ptr<const TraceDetail> against_detail;
+    std::vector<RayStats> against_pixel_stats;
     std::vector<DecisionDifference> differences;
 
     /// The rays are those of a region, not the whole batch.
@@ -120,6 +121,15 @@ struct ShownBatch {
     int width = 0, height = 0;
     std::size_t rays = 0;
     std::shared_ptr<const void> source;  // changes when the figures do (the heat map's upload)
+};
+
+/// What the heat map shows: one value per pixel of a width x height image, signed for B - A;
+/// `source` changes when the values do.
+struct HeatImage {
+    std::vector<float> values;  // empty: nothing to show
+    int width = 0, height = 0;
+    bool difference = false;
+    std::shared_ptr<const void> source;
 };
 
 /// Per pixel of a width x height image, the counts of the rays whose pixels[] it is: summed,
@@ -278,6 +288,7 @@ struct ViewerState {
     ImageRegion explorer_region;   // empty: 64x64 pixels at the centre
     bool region_picking = false;   // the next left drag on the image sets explorer_region
     std::string against;           // a preset the recording is compared with (empty: none)
+    HeatOf heat_of = HeatOf::a;    // the heat map of A, B or B - A (with such a recording)
     bool explorer_tint = true;     // tint the selected node's pixels
     bool stepping = false;         // step-through: the selected node follows `step`
     int step = 0;                  // nodes entered so far, in the recursion's order
@@ -335,6 +346,10 @@ std::string param_inert_reason(const UiSettings& ui, const ParamInfo& info);
 /// an EDACRT parameter (its flag without "--"), a preset, or an action (scene, animate, the
 /// explorer's level, node, crop, region and step, the analysed batch). Throws InputError.
 void apply_setting(ViewerState& state, const std::string& key, const std::string& value);
+
+/// The heat map of the state's view: the shown batch's (A), or, with a recording compared
+/// with another recursion (not stale), B's or B - A as heat_of asks.
+HeatImage heat_image(const ViewerState& state);
 
 /// The batch the analysis tabs show (ShownBatch): the first pass's camera rays from the shown
 /// frame, another batch from a current analysis of it.

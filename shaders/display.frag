@@ -1,11 +1,12 @@
 #version 330 core
 // The progressive render: exposure, tone mapping, sRGB. Or a heat map: counts through the
-// turbo ramp (linear or logarithmic up to heat_max).
+// turbo ramp (linear or logarithmic up to heat_max), or a difference of counts from blue
+// (-heat_max) through white (0) to red (+heat_max).
 in vec2 uv;
 out vec4 colour;
 
 uniform sampler2D image;   // RGB radiance, or the count in R
-uniform int mode;          // 0: render, 1: heat map, 2: tint (drawn blended over the image)
+uniform int mode;          // 0: render, 1: heat map, 2: tint (blended over the image), 3: difference
 uniform float exposure;    // stops
 uniform int tone_map;      // 0: clamp, 1: Reinhard, 2: ACES (Narkowicz)
 uniform float heat_max;
@@ -35,6 +36,14 @@ void main() {
         float v = texture(image, uv).r;
         colour = v > 1.5 ? vec4(0.2, 0.9, 0.35, 0.5) : v > 0.5 ? vec4(1.0, 0.85, 0.1, 0.45)
                                                                 : vec4(0.0);
+        return;
+    }
+    if (mode == 3) {  // as diverging() in heatmap.cpp
+        float v = texture(image, uv).r;
+        float t = heat_log != 0 ? log(1.0 + abs(v)) / log(1.0 + max(heat_max, 1e-6))
+                                : abs(v) / max(heat_max, 1e-6);
+        vec3 end = v < 0.0 ? vec3(0.23, 0.45, 0.95) : vec3(0.95, 0.3, 0.2);
+        colour = vec4(mix(vec3(1.0), end, clamp(t, 0.0, 1.0)), 1.0);
         return;
     }
     if (mode == 1) {

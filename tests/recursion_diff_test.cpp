@@ -7,6 +7,7 @@
 #include "render/batch_capture.h"
 #include "scene/builtin_scenes.h"
 #include "viewer_jobs.h"
+#include "viewer_state.h"
 
 namespace edacrt::app {
 namespace {
@@ -120,6 +121,44 @@ TEST(RecursionDiff, TheRecordingAgainstItsOwnPresetAgreesAndAgainstDacrtDiffers)
         }
         EXPECT_FALSE(analyse(r, -1, false, {}, batch)->against_detail) << "none asked for";
     }
+}
+
+// The heat map of a recording against another recursion: A's, B's or B - A per pixel, signed,
+// and A's again when the recording is stale or nothing was compared.
+TEST(RecursionDiff, TheHeatMapShowsAOrBOrTheirDifference) {
+    RenderRequest r;
+    r.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
+    r.camera = *r.scene->camera;
+    r.settings.width = 40;
+    r.settings.height = 30;
+    r.method = Method::edacrt;
+    ViewerState s;
+    s.analysis = analyse(r, -1, false, {}, parse_batch("bounce:1"), "dacrt");
+    s.batch = parse_batch("bounce:1");
+    ASSERT_EQ(s.analysis->error, "");
+    s.view = View::box_tests;
+    const HeatImage a = heat_image(s);
+    EXPECT_FALSE(a.difference);
+    s.heat_of = HeatOf::b;
+    const HeatImage b = heat_image(s);
+    s.heat_of = HeatOf::difference;
+    const HeatImage d = heat_image(s);
+    EXPECT_TRUE(d.difference);
+    ASSERT_EQ(a.values.size(), 40u * 30u);
+    ASSERT_EQ(b.values.size(), a.values.size());
+    ASSERT_EQ(d.values.size(), a.values.size());
+    bool differs = false;
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+        EXPECT_EQ(a.values[i], float(s.analysis->pixel_stats[i].ray_box_tests));
+        EXPECT_EQ(b.values[i], float(s.analysis->against_pixel_stats[i].ray_box_tests));
+        EXPECT_EQ(d.values[i], b.values[i] - a.values[i]);
+        differs |= d.values[i] != 0.0f;
+    }
+    EXPECT_TRUE(differs) << "EDACRT and DACRT make other box tests somewhere";
+    s.analysis_stale = true;
+    EXPECT_FALSE(heat_image(s).difference) << "a stale recording: A's, from the batch";
+    s.view = View::render;
+    EXPECT_TRUE(heat_image(s).values.empty());
 }
 
 }  // namespace

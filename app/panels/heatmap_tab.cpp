@@ -17,25 +17,47 @@ void draw_heatmap_tab(ViewerState& s, float heat_max) {
         ImGui::SameLine();
     }
     ImGui::Checkbox("logarithmic", &s.heat_log);
+    // With a recording compared with another recursion: A, B or their difference.
+    const Analysis* a = s.analysis.get();
+    const bool against = a && a->against_detail && !s.analysis_stale;
+    if (against) {
+        ImGui::TextDisabled("the recording against %s:", a->against.c_str());
+        for (const EnumEntry<HeatOf>& of : kHeatOf) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton(std::string(of.help).c_str(), s.heat_of == of.value))
+                s.heat_of = of.value;
+        }
+    }
     if (s.view != View::render) {
-        // The legend: the turbo ramp with its scale.
+        // The legend: the ramp with its scale (B - A: signed, from -max to +max).
+        const bool difference = against && s.heat_of == HeatOf::difference;
         const ImVec2 origin = ImGui::GetCursorScreenPos();
         const float width = std::min(ImGui::GetContentRegionAvail().x, 480.0f), height = 16.0f;
         ImDrawList* draw = ImGui::GetWindowDrawList();
         constexpr int kSteps = 64;
         for (int i = 0; i < kSteps; ++i) {
-            const glm::vec3 c = turbo((float(i) + 0.5f) / kSteps);
+            const float t = (float(i) + 0.5f) / kSteps;
+            const glm::vec3 c = difference ? diverging(2.0f * t - 1.0f) : turbo(t);
             draw->AddRectFilled(ImVec2(origin.x + width * i / kSteps, origin.y),
                                 ImVec2(origin.x + width * (i + 1) / kSteps, origin.y + height),
                                 ImGui::GetColorU32(ImVec4(c.x, c.y, c.z, 1.0f)));
         }
         ImGui::Dummy(ImVec2(width, height));
-        const float mid = s.heat_log ? std::expm1(0.5f * std::log1p(heat_max)) : 0.5f * heat_max;
-        ImGui::Text("0");
-        ImGui::SameLine(width * 0.45f);
-        ImGui::Text("%.0f", mid);
-        ImGui::SameLine(width * 0.85f);
-        ImGui::Text("%.0f", heat_max);
+        if (difference) {
+            ImGui::Text("-%.0f (B fewer)", heat_max);
+            ImGui::SameLine(width * 0.48f);
+            ImGui::Text("0");
+            ImGui::SameLine(width * 0.75f);
+            ImGui::Text("+%.0f (B more)", heat_max);
+        } else {
+            const float mid =
+                s.heat_log ? std::expm1(0.5f * std::log1p(heat_max)) : 0.5f * heat_max;
+            ImGui::Text("0");
+            ImGui::SameLine(width * 0.45f);
+            ImGui::Text("%.0f", mid);
+            ImGui::SameLine(width * 0.85f);
+            ImGui::Text("%.0f", heat_max);
+        }
 
         ImGui::TextDisabled("hover the image for a pixel's values");
     }

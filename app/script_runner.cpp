@@ -105,14 +105,27 @@ std::string analysis_json(const ViewerState& s) {
                                                : std::string(" (wait-analysis first)")));
     }
     const bool crop = s.batch != BatchId{} && s.analysis->cropped();
-    const nlohmann::json json = {{"batch", name},
-                                 {"method", enum_name(kMethods, s.submitted.method)},
-                                 {"scene", s.scene ? s.scene->source : ""},
-                                 {"width", batch.width},
-                                 {"height", batch.height},
-                                 {"rays", batch.rays},
-                                 {"crop", crop},
-                                 {"detail", stats_json(*batch.detail)}};
+    nlohmann::json json = {{"batch", name},
+                           {"method", enum_name(kMethods, s.submitted.method)},
+                           {"scene", s.scene ? s.scene->source : ""},
+                           {"width", batch.width},
+                           {"height", batch.height},
+                           {"rays", batch.rays},
+                           {"crop", crop},
+                           {"detail", stats_json(*batch.detail)}};
+    // The recording against another recursion (Recursion tab), when it is of this batch.
+    if (const Analysis* a = s.analysis.get();
+        a && a->against_detail && !s.analysis_stale && a->batch == s.batch) {
+        nlohmann::json differences = nlohmann::json::array();
+        for (const DecisionDifference& d : a->differences)
+            differences.push_back(
+                {{"node_a", d.node_a}, {"node_b", d.node_b}, {"depth", d.depth}, {"what", d.what}});
+        json["against"] = {{"preset", a->against},
+                           {"rays", a->against_detail->rays.size()},
+                           {"crop", a->cropped()},
+                           {"detail", stats_json(*a->against_detail)},
+                           {"differences", differences}};
+    }
     return json_text(json);
 }
 

@@ -95,7 +95,9 @@ std::string layout_json(const ViewerState& s);
 
 /// What the Statistics tab shows, as JSON (the script's `write-analysis FILE`): `batch` (its
 /// name), `method`, `scene`, `width`, `height`, `rays`, `crop` (the batch is the rays of a region
-/// of the image) and `detail` (stats_json(): the per-level table and per-ray summary). Throws
+/// of the image) and `detail` (stats_json(): the per-level table and per-ray summary); with a
+/// recording of this batch against another recursion, `against`: its preset, rays, crop, detail
+/// and the node pairs where the decisions first differ (`differences`). Throws
 /// InputError while the batch has no statistics (not recorded, stale or failed: the reason).
 std::string analysis_json(const ViewerState& s);
 

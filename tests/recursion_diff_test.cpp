@@ -4,8 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "input_error.h"
 #include "render/batch_capture.h"
 #include "scene/builtin_scenes.h"
+#include "script_runner.h"
 #include "viewer_jobs.h"
 #include "viewer_state.h"
 
@@ -155,7 +159,17 @@ TEST(RecursionDiff, TheHeatMapShowsAOrBOrTheirDifference) {
         differs |= d.values[i] != 0.0f;
     }
     EXPECT_TRUE(differs) << "EDACRT and DACRT make other box tests somewhere";
+    // write-analysis: B's statistics and the differences beside A's.
+    const nlohmann::json json = nlohmann::json::parse(analysis_json(s));
+    ASSERT_TRUE(json.contains("against"));
+    EXPECT_EQ(json["against"]["preset"], "dacrt");
+    EXPECT_EQ(json["against"]["rays"], json["rays"]);
+    EXPECT_EQ(json["against"]["differences"].size(), s.analysis->differences.size());
+    EXPECT_NE(json["against"]["detail"]["per_ray"], json["detail"]["per_ray"]);
     s.analysis_stale = true;
+    EXPECT_NE(test::error_of([&] { analysis_json(s); }).find("no statistics of batch bounce:1"),
+              std::string::npos)
+        << "a stale recording is not written";
     EXPECT_FALSE(heat_image(s).difference) << "a stale recording: A's, from the batch";
     s.view = View::render;
     EXPECT_TRUE(heat_image(s).values.empty());

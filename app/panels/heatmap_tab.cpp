@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "panels.h"
 
@@ -74,10 +75,21 @@ void draw_heat_readout(const ViewerState& s) {
     if (x < 0 || y < 0 || x >= w || y >= h ||
         std::size_t(y) * std::size_t(w) + std::size_t(x) >= batch.pixels.size())
         return;
-    const RayStats& ray = batch.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)];
-    ImGui::SetTooltip("pixel (%d, %d)\n%u box tests, %u triangle tests\ndepth %u, %u order misses",
-                      x, y, ray.ray_box_tests, ray.ray_triangle_tests, unsigned(ray.deepest_level),
-                      unsigned(ray.order_misses));
+    const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+    const RayStats& ray = batch.pixels[i];
+    // With a recording against another recursion (of the same image), B's counts too.
+    const Analysis* a = s.analysis.get();
+    std::string other;
+    if (a && a->against_detail && !s.analysis_stale && a->width == w && a->height == h &&
+        i < a->against_pixel_stats.size()) {
+        const RayStats& b = a->against_pixel_stats[i];
+        other = "\nB (" + a->against + "): " + std::to_string(b.ray_box_tests) + " box tests, " +
+                std::to_string(b.ray_triangle_tests) + " triangle tests";
+    }
+    ImGui::SetTooltip(
+        "pixel (%d, %d)\n%u box tests, %u triangle tests\ndepth %u, %u order misses%s", x, y,
+        ray.ray_box_tests, ray.ray_triangle_tests, unsigned(ray.deepest_level),
+        unsigned(ray.order_misses), other.c_str());
 }
 
 }  // namespace edacrt::app

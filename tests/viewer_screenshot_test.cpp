@@ -430,7 +430,8 @@ TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
     const std::string script =
         "set max-depth 3\nwait-spp 1\nwrite-analysis " + file("camera.json") +
         "\nset batch bounce:1\nwait-analysis\nwrite-analysis " + file("bounce.json") +
-        "\nview box\ntab Heat_map\nwait-settled\nscreenshot " + file("heat.png") +
+        "\nview box\nwait-settled\ntab Heat_map\nwait-settled\nscreenshot " + file("heat.png") +
+        "\nlayout " + file("heat.json") +
         "\ntab Traversal\npick-image 0.5 0.5\nwait-analysis\nwait-settled\nlayout " +
         file("layout.json") + "\nset batch shadow:0\nwait-analysis\nwrite-analysis " +
         file("shadow.json") + "\nset batch bounce:4\nwait-analysis\nwrite-analysis " +
@@ -438,7 +439,7 @@ TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
     const auto result =
         run_viewer_script(dir.path(), script, 1280, 800, kSanitizedResolution + "builtin:cornell");
     EXPECT_EQ(result.exit_code, 1) << result.output;
-    EXPECT_NE(result.output.find("script line 21: no statistics of batch bounce:4: no batch "
+    EXPECT_NE(result.output.find("script line 23: no statistics of batch bounce:4: no batch "
                                  "bounce:4: paths end after max-depth 3 bounces"),
               std::string::npos)
         << result.output;
@@ -469,7 +470,31 @@ TEST(ViewerScreenshots, AnyBatchIsAnalysedAndWritten) {
     std::ifstream layout(file("layout.json"));
     const nlohmann::json drawn = nlohmann::json::parse(layout);
     EXPECT_TRUE(drawn["items"].contains("Analysis/batch")) << drawn.dump();
+    // `tab` after `view box`: the tab is open by the time wait-settled lets the script go on.
+    std::ifstream heat_layout(file("heat.json"));
+    const nlohmann::json heat = nlohmann::json::parse(heat_layout);
+    const auto& open = heat["tabs_open"];
+    EXPECT_NE(std::find(open.begin(), open.end(), "Heat map"), open.end()) << open.dump();
     EXPECT_TRUE(drawn["errors_shown"].empty()) << drawn.dump();
+}
+
+// ImGui brings a tab forward a frame after it is asked for: wait-settled lets the script go on
+// only once every tab asked for is drawn open (a heat map view made the next frame's layout
+// look settled before the switch).
+TEST(ViewerScreenshots, ATabAskedForIsOpenWhenTheScriptGoesOn) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    const std::string layout = (dir.path() / "layout.json").string();
+    const auto result = run_viewer_script(
+        dir.path(),
+        "wait-spp 1\nview box\nwait-settled\ntab Recursion\nwait-settled\nlayout " + layout + "\n",
+        1280, 800,
+        "--integrator primary " + (test::source_dir() / "assets/teapot/teapot.obj").string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    std::ifstream in(layout);
+    const nlohmann::json drawn = nlohmann::json::parse(in);
+    const auto& open = drawn["tabs_open"];
+    EXPECT_NE(std::find(open.begin(), open.end(), "Recursion"), open.end()) << open.dump();
 }
 
 // `set font-scale` (Ctrl +/-) scales the panels' text and widgets; `set analysis-height` moves

@@ -34,13 +34,17 @@ void place(ViewerState& s, const char* name) {
     s.placements.push_back({name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells(), widths});
 }
 
-/// A tab; the script's `tab NAME` brings it forward.
+/// A tab; the script's `tab NAME` brings it forward. ImGui selects it in the next frame, so
+/// the request stays (and waits see it pending) until the tab is drawn open.
 bool tab(ViewerState& s, const char* name) {
-    const bool select = std::erase(s.select_tabs, std::string(name)) > 0;
+    const bool select = std::ranges::find(s.select_tabs, name) != s.select_tabs.end();
     const bool open =
         ImGui::BeginTabItem(name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
     report_item(s, std::string(name) + "/tab");
-    if (open) s.tabs_open.emplace_back(name);
+    if (open) {
+        s.tabs_open.emplace_back(name);
+        std::erase(s.select_tabs, std::string(name));
+    }
     return open;
 }
 

@@ -55,7 +55,7 @@ std::vector<std::string> layout_problems(const Layout& layout, float width, floa
                                describe(layout.image));
         if (p.clipped_cells > 0)
             problems.push_back(p.name + ": " + std::to_string(p.clipped_cells) +
-                               " table cells clipped");
+                               " table cells clipped (the first: " + p.first_clipped + ")");
     }
     return problems;
 }

@@ -58,6 +58,7 @@ struct PanelPlacement {
     int clipped_cells = 0;  // table cells whose text was wider than the cell
     // The widths of its table cells, hashed: changes while ImGui fits columns to their text.
     std::uint64_t cell_widths = 0;
+    std::string first_clipped = {};  // the first clipped cell's text and widths, for the report
 };
 
 /// A widget or window the panels report where it was drawn (the script's `layout FILE`).

@@ -17,6 +17,7 @@ namespace {
 
 int clipped_cells = 0;
 std::uint64_t cell_widths = 0;  // FNV-1a over the cells' widths
+std::string first_clipped;      // the first clipped cell's text and width
 
 constexpr ImGuiWindowFlags kPinned = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                      ImGuiWindowFlags_NoSavedSettings |
@@ -31,7 +32,9 @@ void pin(const Rect& r) {
 void place(ViewerState& s, const char* name) {
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     const std::uint64_t widths = cell_widths;
-    s.placements.push_back({name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells(), widths});
+    std::string first = std::exchange(first_clipped, std::string());
+    s.placements.push_back(
+        {name, {pos.x, pos.y, size.x, size.y}, take_clipped_cells(), widths, std::move(first)});
 }
 
 /// A tab; the script's `tab NAME` brings it forward. ImGui selects it in the next frame, so
@@ -80,16 +83,17 @@ void cell_text(const char* format, ...) {
     // Columns size to their content from the previous frame: a cell is clipped when its text
     // is wider than what is left of it.
     const float width = ImGui::GetContentRegionAvail().x;
-    if (ImGui::CalcTextSize(text).x > width + 1.0f) ++clipped_cells;
+    if (const float wide = ImGui::CalcTextSize(text).x; wide > width + 1.0f && !clipped_cells++)
+        first_clipped = "'" + std::string(text) + "', " + std::to_string(int(wide)) + " wide in " +
+                        std::to_string(int(width));
     cell_widths = (cell_widths ^ std::bit_cast<std::uint32_t>(width)) * 1099511628211ull;
     ImGui::TextUnformatted(text);
 }
 
-void table_headers(std::span<const Column> columns, int frozen_columns, bool compact,
-                   int frozen_rows) {
+void table_headers(std::span<const Column> columns, int frozen_columns, bool compact) {
     for (const Column& c : columns)
         ImGui::TableSetupColumn(c.name, compact && c.detail ? ImGuiTableColumnFlags_Disabled : 0);
-    ImGui::TableSetupScrollFreeze(frozen_columns, 1 + frozen_rows);
+    ImGui::TableSetupScrollFreeze(frozen_columns, 1);
     ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
     for (const Column& c : columns) {
         ImGui::TableNextColumn();
@@ -122,6 +126,7 @@ void report_item(ViewerState& s, std::string name) {
 
 int take_clipped_cells() {
     cell_widths = 0;
+    first_clipped.clear();
     return std::exchange(clipped_cells, 0);
 }
 

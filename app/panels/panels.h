@@ -92,11 +92,10 @@ void error_text(ViewerState& state, const char* name, const std::string& text);
 /// `layout FILE`.
 void report_item(ViewerState& state, std::string name);
 
-/// Sets up `columns` in the current table, freezes the header row (and `frozen_columns`, and
-/// `frozen_rows` rows under it), and draws the headers, each with its tooltip. With
-/// `compact`, the detail columns are hidden (their cells are skipped).
-void table_headers(std::span<const Column> columns, int frozen_columns = 0, bool compact = false,
-                   int frozen_rows = 0);
+/// Sets up `columns` in the current table, freezes the header row (and `frozen_columns`), and
+/// draws the headers, each with its tooltip. With `compact`, the detail columns are hidden
+/// (their cells are skipped).
+void table_headers(std::span<const Column> columns, int frozen_columns = 0, bool compact = false);
 
 /// A table cell's text (nothing in a hidden column); counts cells too narrow for it (the layout
 /// check reports them).

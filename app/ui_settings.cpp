@@ -226,25 +226,29 @@ HeatImage heat_image(const ViewerState& s) {
     const Analysis* a = s.analysis.get();
     if (s.view == View::render) return h;
     if (s.heat_of != HeatOf::a && a && a->against_detail && !s.analysis_stale) {
-        std::vector<float> b = heat_values(a->against_pixel_stats, s.view);
-        if (s.heat_of == HeatOf::difference) {
-            const std::vector<float> values_a = heat_values(a->pixel_stats, s.view);
-            for (std::size_t i = 0; i < b.size() && i < values_a.size(); ++i) b[i] -= values_a[i];
-            h.difference = true;
-        }
-        h.values = std::move(b);
+        h.pixels = a->against_pixel_stats;
+        if (s.heat_of == HeatOf::difference) h.minus = a->pixel_stats;
         h.width = a->width;
         h.height = a->height;
         h.source = s.analysis;
         return h;
     }
     const ShownBatch batch = shown_batch(s);
-    if (!batch.detail || batch.pixels.empty()) return h;
-    h.values = heat_values(batch.pixels, s.view);
+    if (!batch.detail) return h;
+    h.pixels = batch.pixels;
     h.width = batch.width;
     h.height = batch.height;
     h.source = batch.source;
     return h;
+}
+
+std::vector<float> HeatImage::values(View view) const {
+    std::vector<float> out = heat_values(pixels, view);
+    if (difference()) {
+        const std::vector<float> a = heat_values(minus, view);
+        for (std::size_t i = 0; i < out.size() && i < a.size(); ++i) out[i] -= a[i];
+    }
+    return out;
 }
 
 ShownBatch shown_batch(const ViewerState& s) {

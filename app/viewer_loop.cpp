@@ -354,16 +354,17 @@ class Viewer {
         // The heat map of the analysed batch (the frame's camera rays, or a recorded batch),
         // or of the recursion it is compared with, or of their difference.
         const HeatImage heat = heat_image(s_);
-        if (!heat.values.empty() &&
+        if (!heat.pixels.empty() &&
             (heat.source != u.heat_source || s_.view != u.view || s_.heat_of != u.heat_of)) {
+            const std::vector<float> values = heat.values(s_.view);
             float largest = 0.0f;
-            for (const float v : heat.values) largest = std::max(largest, std::abs(v));
+            for (const float v : values) largest = std::max(largest, std::abs(v));
             u.heat_max = std::max(1.0f, largest);
-            display_.upload_heat(heat.values, heat.width, heat.height);
+            display_.upload_heat(values, heat.width, heat.height);
             u.heat_source = heat.source;
             u.view = s_.view;
             u.heat_of = s_.heat_of;
-            u.heat_difference = heat.difference;
+            u.heat_difference = heat.difference();
         }
         // The selected node's pixels, and in step-through the hits found so far.
         u.tint = s_.recursion_shown && s_.explorer_tint && s_.analysis && !s_.analysis_stale &&
@@ -377,7 +378,7 @@ class Viewer {
                 u.tint_key = key;
             }
         }
-        u.heat = !heat.values.empty() && heat.source == u.heat_source && u.view == s_.view &&
+        u.heat = !heat.pixels.empty() && heat.source == u.heat_source && u.view == s_.view &&
                  u.heat_of == s_.heat_of;
     }
 

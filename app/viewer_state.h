@@ -123,13 +123,17 @@ struct ShownBatch {
     std::shared_ptr<const void> source;  // changes when the figures do (the heat map's upload)
 };
 
-/// What the heat map shows: one value per pixel of a width x height image, signed for B - A;
-/// `source` changes when the values do.
+/// What the heat map shows, picked every frame without computing it: per pixel of a width x
+/// height image, the counts of `pixels`, less those of `minus` for B - A. `source` changes
+/// when the counts do; values() computes the view's values (on upload).
 struct HeatImage {
-    std::vector<float> values;  // empty: nothing to show
+    std::span<const RayStats> pixels;  // empty: nothing to show
+    std::span<const RayStats> minus;   // A's counts for B - A, else empty
     int width = 0, height = 0;
-    bool difference = false;
     std::shared_ptr<const void> source;
+
+    bool difference() const { return !minus.empty(); }
+    std::vector<float> values(View view) const;
 };
 
 /// Per pixel of a width x height image, the counts of the rays whose pixels[] it is: summed,

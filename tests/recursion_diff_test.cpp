@@ -92,15 +92,21 @@ TEST(RecursionDiff, EachBranchReportsItsFirstDifferenceOnly) {
     EXPECT_EQ(first_differences(a, b, 0).size(), 0u) << "the limit";
 }
 
-TEST(RecursionDiff, TheRecordingAgainstItsOwnPresetAgreesAndAgainstDacrtDiffers) {
+/// The Cornell box path-traced by EDACRT at width x height, three bounces.
+RenderRequest cornell(int width, int height) {
     RenderRequest r;
     r.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
     r.camera = *r.scene->camera;
-    r.settings.width = 64;
-    r.settings.height = 48;
+    r.settings.width = width;
+    r.settings.height = height;
     r.settings.integrator = Integrator::path;
     r.settings.max_depth = 3;
     r.method = Method::edacrt;
+    return r;
+}
+
+TEST(RecursionDiff, TheRecordingAgainstItsOwnPresetAgreesAndAgainstDacrtDiffers) {
+    const RenderRequest r = cornell(64, 48);
     for (const BatchId batch : {BatchId{}, parse_batch("bounce:1")}) {
         SCOPED_TRACE(batch_name(batch));
         const auto same = analyse(r, -1, false, {}, batch, "default");
@@ -130,33 +136,28 @@ TEST(RecursionDiff, TheRecordingAgainstItsOwnPresetAgreesAndAgainstDacrtDiffers)
 // The heat map of a recording against another recursion: A's, B's or B - A per pixel, signed,
 // and A's again when the recording is stale or nothing was compared.
 TEST(RecursionDiff, TheHeatMapShowsAOrBOrTheirDifference) {
-    RenderRequest r;
-    r.scene = std::make_shared<const Scene>(make_builtin_scene("builtin:cornell"));
-    r.camera = *r.scene->camera;
-    r.settings.width = 40;
-    r.settings.height = 30;
-    r.method = Method::edacrt;
+    const RenderRequest r = cornell(40, 30);
     ViewerState s;
     s.analysis = analyse(r, -1, false, {}, parse_batch("bounce:1"), "dacrt");
     s.batch = parse_batch("bounce:1");
     ASSERT_EQ(s.analysis->error, "");
     s.view = View::box_tests;
-    const HeatImage a = heat_image(s);
-    EXPECT_FALSE(a.difference);
+    EXPECT_FALSE(heat_image(s).difference());
+    const std::vector<float> a = heat_image(s).values(s.view);
     s.heat_of = HeatOf::b;
-    const HeatImage b = heat_image(s);
+    const std::vector<float> b = heat_image(s).values(s.view);
     s.heat_of = HeatOf::difference;
-    const HeatImage d = heat_image(s);
-    EXPECT_TRUE(d.difference);
-    ASSERT_EQ(a.values.size(), 40u * 30u);
-    ASSERT_EQ(b.values.size(), a.values.size());
-    ASSERT_EQ(d.values.size(), a.values.size());
+    EXPECT_TRUE(heat_image(s).difference());
+    const std::vector<float> d = heat_image(s).values(s.view);
+    ASSERT_EQ(a.size(), 40u * 30u);
+    ASSERT_EQ(b.size(), a.size());
+    ASSERT_EQ(d.size(), a.size());
     bool differs = false;
-    for (std::size_t i = 0; i < a.values.size(); ++i) {
-        EXPECT_EQ(a.values[i], float(s.analysis->pixel_stats[i].ray_box_tests));
-        EXPECT_EQ(b.values[i], float(s.analysis->against_pixel_stats[i].ray_box_tests));
-        EXPECT_EQ(d.values[i], b.values[i] - a.values[i]);
-        differs |= d.values[i] != 0.0f;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i], float(s.analysis->pixel_stats[i].ray_box_tests));
+        EXPECT_EQ(b[i], float(s.analysis->against_pixel_stats[i].ray_box_tests));
+        EXPECT_EQ(d[i], b[i] - a[i]);
+        differs |= d[i] != 0.0f;
     }
     EXPECT_TRUE(differs) << "EDACRT and DACRT make other box tests somewhere";
     // write-analysis: B's statistics and the differences beside A's.
@@ -170,9 +171,9 @@ TEST(RecursionDiff, TheHeatMapShowsAOrBOrTheirDifference) {
     EXPECT_NE(test::error_of([&] { analysis_json(s); }).find("no statistics of batch bounce:1"),
               std::string::npos)
         << "a stale recording is not written";
-    EXPECT_FALSE(heat_image(s).difference) << "a stale recording: A's, from the batch";
+    EXPECT_FALSE(heat_image(s).difference()) << "a stale recording: A's, from the batch";
     s.view = View::render;
-    EXPECT_TRUE(heat_image(s).values.empty());
+    EXPECT_TRUE(heat_image(s).pixels.empty());
 }
 
 }  // namespace

@@ -545,8 +545,7 @@ TEST(Script, EveryVerbParsesAndIsInTheHelpAndTheReadme) {
                                   (verb.usage.empty() ? "" : " " + std::string(verb.usage));
         EXPECT_NE(help.find(usage), std::string::npos) << usage;
         const std::string quoted = std::string("`").append(verb.name);
-        EXPECT_NE(readme.find(quoted), std::string::npos)
-            << verb.name << " is not in README.md";
+        EXPECT_NE(readme.find(quoted), std::string::npos) << verb.name << " is not in README.md";
     }
 }
 

@@ -27,8 +27,8 @@ void EdacrtTracer::set_params(const EdacrtParams& params) {
 }
 
 void EdacrtTracer::set_scene(const Scene& scene) {
-    gather_triangles(scene, triangles_);
-    prepare_triangles();
+    triangles_.resize(scene.triangle_count());
+    prepare_triangles(&scene);
 }
 
 UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
@@ -36,14 +36,15 @@ UpdateWork EdacrtTracer::update(const Scene& scene, SceneUpdate) {
     return UpdateWork::none;
 }
 
-void EdacrtTracer::prepare_triangles() {
+void EdacrtTracer::prepare_triangles(const Scene* scene) {
     // Per frame (update_scene() of an animation): in parallel, into the storage of the last
     // frame. First each triangle's reference, after room for the pieces; then, with
     // params_.presplit, the triangles the plan cuts (presplit.h) give way to their pieces, placed
     // before the triangles: the large triangles are the likeliest occluders, and a leaf tests its
     // references in this order, so an any-hit ray meets them first. A piece is binned by its
     // clipped box's centre and intersects as its whole triangle (read through prims, not
-    // copied: a copy per reference was a third of this pass's writes).
+    // copied: a copy per reference was a third of this pass's writes). Gathering the scene's
+    // triangles in this pass saves reading them back.
     const std::size_t count = triangles_.size();
     const bool presplit = params_.presplit != 0.0f;
     // Room for every piece a plan can make (presplit_budget()).
@@ -67,7 +68,8 @@ void EdacrtTracer::prepare_triangles() {
         tbb::blocked_range<std::size_t>(0, count, 4096), Sums{},
         [&](const tbb::blocked_range<std::size_t>& range, Sums sum) {
             for (std::size_t prim = range.begin(); prim != range.end(); ++prim) {
-                const Triangle& tri = triangles_[prim];
+                const Triangle tri = scene ? scene->corners(prim) : triangles_[prim];
+                if (scene) triangles_[prim] = tri;
                 const std::size_t slot = front + prim;
                 // A triangle that can never be hit takes no reference (has_coincident_corners).
                 const bool never_hit = has_coincident_corners(tri);

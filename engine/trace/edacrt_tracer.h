@@ -43,7 +43,8 @@ class EdacrtTracer final : public Tracer {
     TraceStats trace_with(std::span<const Ray> rays, std::span<Hit> hits, TraceDetail* detail);
 
     /// The recursion's triangles from triangles_: each one, or its pieces (params_.presplit).
-    void prepare_triangles();
+    /// With `scene`, triangles_ is gathered from it in the same pass.
+    void prepare_triangles(const Scene* scene = nullptr);
     /// The threads' scratch (per thread: O(triangles) for the triangle partitions).
     std::size_t scratch_bytes() const;
 

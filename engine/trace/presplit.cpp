@@ -1,11 +1,10 @@
 #include "trace/presplit.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+#include <immintrin.h>
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -40,27 +39,24 @@ struct Box {
 };
 
 /// A convex polygon in double: a triangle's part inside a box (at most 9 corners; room for
-/// rounding to add a few).
+/// rounding to add a few), and the box of its corners.
 struct Polygon {
     std::array<glm::dvec3, 16> corners;
     std::size_t size = 0;
+    Box box;
 
-    Box box() const {
-        Box b;
-        for (std::size_t i = 0; i < size; ++i) {
-            b.lo = glm::min(b.lo, corners[i]);
-            b.hi = glm::max(b.hi, corners[i]);
-        }
-        return b;
+    void add(const glm::dvec3& corner) {
+        corners[size++] = corner;
+        box.lo = glm::min(box.lo, corner);
+        box.hi = glm::max(box.hi, corner);
     }
 };
 
 Polygon corners(const Triangle& tri) {
     Polygon polygon;
-    polygon.corners[0] = glm::dvec3(tri.p0);
-    polygon.corners[1] = glm::dvec3(tri.p1);
-    polygon.corners[2] = glm::dvec3(tri.p2);
-    polygon.size = 3;
+    polygon.add(glm::dvec3(tri.p0));
+    polygon.add(glm::dvec3(tri.p1));
+    polygon.add(glm::dvec3(tri.p2));
     return polygon;
 }
 
@@ -71,18 +67,19 @@ Polygon corners(const Triangle& tri) {
 template <int A>
 bool cut_on(const Polygon& polygon, double plane, Polygon& below, Polygon& above) {
     below.size = above.size = 0;
+    below.box = above.box = Box{};
     const std::size_t room = polygon.corners.size() - 1;
     for (std::size_t i = 0; i < polygon.size; ++i) {
         const glm::dvec3& a = polygon.corners[i];
         const glm::dvec3& b = polygon.corners[i + 1 == polygon.size ? 0 : i + 1];
         if (below.size >= room || above.size >= room) return false;
-        if (a[A] <= plane) below.corners[below.size++] = a;
-        if (a[A] >= plane) above.corners[above.size++] = a;
+        if (a[A] <= plane) below.add(a);
+        if (a[A] >= plane) above.add(a);
         if ((a[A] < plane && b[A] > plane) || (a[A] > plane && b[A] < plane)) {
             glm::dvec3 p = a + (b - a) * ((plane - a[A]) / (b[A] - a[A]));
             p[A] = plane;
-            below.corners[below.size++] = p;
-            above.corners[above.size++] = p;
+            below.add(p);
+            above.add(p);
         }
     }
     return true;
@@ -94,15 +91,23 @@ bool cut(const Polygon& polygon, int axis, double plane, Polygon& below, Polygon
                        : cut_on<2>(polygon, plane, below, above);
 }
 
+/// The next float towards -infinity from a finite `x`: std::nextafter without its call and
+/// branches (the rounding direction is a coin toss, so branches were mispredicted half the time).
+float next_down(float x) {
+    // As integers, floats below zero grow away from zero; +0 steps like -0, to -denorm_min.
+    const auto bits = std::bit_cast<std::int32_t>(x);
+    const std::int32_t from = bits == 0 ? std::numeric_limits<std::int32_t>::min() : bits;
+    return std::bit_cast<float>(from > 0 ? from - 1 : from + 1);
+}
+
 /// Rounds outwards to float (the double box stays inside) and pads like conservative_bounds.
 Aabb widen(const Box& box, float pad) {
     Aabb out;
     for (int axis = 0; axis < 3; ++axis) {
-        float lo = float(box.lo[axis]), hi = float(box.hi[axis]);
-        if (double(lo) > box.lo[axis]) lo = std::nextafter(lo, -kInfinity);
-        if (double(hi) < box.hi[axis]) hi = std::nextafter(hi, kInfinity);
-        out.lo[axis] = lo - pad;
-        out.hi[axis] = hi + pad;
+        const float lo = float(box.lo[axis]), hi = float(box.hi[axis]);
+        const float down = next_down(lo), up = -next_down(-hi);
+        out.lo[axis] = (double(lo) > box.lo[axis] ? down : lo) - pad;
+        out.hi[axis] = (double(hi) < box.hi[axis] ? up : hi) + pad;
     }
     return out;
 }
@@ -116,13 +121,13 @@ class Splitter {
 
     std::size_t split(const Triangle& tri, std::span<Aabb> out) const {
         const Polygon polygon = corners(tri);
-        return split(conservative_padding(corners_bounds(tri)), polygon, polygon.box(), out);
+        return split(conservative_padding(corners_bounds(tri)), polygon, out);
     }
 
   private:
-    /// `piece` is the part of the triangle inside the cuts so far, `box` its box; it gets
-    /// out.size() pieces.
-    std::size_t split(float pad, const Polygon& piece, const Box& box, std::span<Aabb> out) const {
+    /// `piece` is the part of the triangle inside the cuts so far; it gets out.size() pieces.
+    std::size_t split(float pad, const Polygon& piece, std::span<Aabb> out) const {
+        const Box& box = piece.box;
         const glm::dvec3 extent = box.hi - box.lo;
         const int axis =
             extent.x >= extent.y ? (extent.x >= extent.z ? 0 : 2) : (extent.y >= extent.z ? 1 : 2);
@@ -133,15 +138,17 @@ class Splitter {
             out[0] = widen(box, pad);
             return 1;
         }
-        const Box left = below.box(), right = above.box();
+        const Box &left = below.box, &right = above.box;
         const double left_area = left.surface_area(), total = left_area + right.surface_area();
         const double share = total > 0.0 ? left_area / total : 0.5;
         const std::size_t pieces = out.size();
-        const std::size_t left_pieces = std::clamp(std::size_t(std::lround(share * double(pieces))),
-                                                   std::size_t(1), pieces - 1);
-        const std::size_t made = split(pad, below, left, out.first(left_pieces));
+        // share * pieces rounded half up (std::lround for x >= 0; x - floor(x) is exact).
+        const double x = share * double(pieces), whole = std::floor(x);
+        const std::size_t left_pieces = std::clamp(
+            std::size_t(x - whole >= 0.5 ? whole + 1 : whole), std::size_t(1), pieces - 1);
+        const std::size_t made = split(pad, below, out.first(left_pieces));
         // The right half's pieces follow the left half's without a gap.
-        return made + split(pad, above, right, out.subspan(made, pieces - left_pieces));
+        return made + split(pad, above, out.subspan(made, pieces - left_pieces));
     }
 
     /// The coarsest plane of the grid over the scene box (cells of 1/2^level of its extent)
@@ -174,19 +181,39 @@ std::vector<std::uint32_t> extra_pieces(std::span<const float> areas, std::size_
         return std::min(std::floor(scale * double(area)), double(kMaxPieces - 1));
     };
     const auto total = [&](double scale) {
-        double sum = 0.0;  // exact: a sum of integers below 2^53
-        for (const float area : areas) sum += extra(scale, area);
+        // Exact, a sum of integers below 2^53, so in any order: four at a time in AVX (the
+        // bisection's passes were most of a plan's time). min(cap, x) is std::min(x, cap).
+        const __m256d scale4 = _mm256_set1_pd(scale), cap4 = _mm256_set1_pd(kMaxPieces - 1);
+        __m256d sum4 = _mm256_setzero_pd();
+        const std::size_t n = areas.size(), whole = n - n % 4;
+        for (std::size_t i = 0; i < whole; i += 4) {
+            const __m256d area = _mm256_cvtps_pd(_mm_loadu_ps(areas.data() + i));
+            sum4 = _mm256_add_pd(sum4,
+                                 _mm256_min_pd(cap4, _mm256_floor_pd(_mm256_mul_pd(scale4, area))));
+        }
+        alignas(32) std::array<double, 4> lanes;
+        _mm256_store_pd(lanes.data(), sum4);
+        double sum = (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+        for (std::size_t i = whole; i < n; ++i) sum += extra(scale, areas[i]);
         return sum;
     };
+    // The sum is a step function of the scale; every scale on its last step within the budget
+    // gives the same pieces. Bracket: total(budget / sum of areas) <= budget, as floor(x) <= x;
+    // at (budget + 1) / largest, the largest box alone gets more.
+    double area_sum = 0.0;
+    for (const float area : areas) area_sum += double(area);
     const double largest = *std::max_element(areas.begin(), areas.end());
+    double lo = double(budget) / area_sum, hi = double(budget + 1) / largest;
     // At scale 1 / min_area a box of min_area gets its first extra piece.
-    double lo = 0.0, hi = double(budget + 1) / largest;  // hi gives the largest alone > budget
     if (1.0 / min_area < hi && total(1.0 / min_area) <= double(budget))
         lo = 1.0 / min_area;
     else
-        for (int iteration = 0; iteration < 40; ++iteration) {
-            const double mid = 0.5 * (lo + hi);
-            (total(mid) <= double(budget) ? lo : hi) = mid;
+        for (double at_lo = total(lo); at_lo < double(budget) && hi - lo > 0x1p-40 * hi;) {
+            const double mid = 0.5 * (lo + hi), at_mid = total(mid);
+            if (at_mid <= double(budget))
+                lo = mid, at_lo = at_mid;
+            else
+                hi = mid;
         }
     std::vector<std::uint32_t> pieces(areas.size());
     for (std::size_t i = 0; i < areas.size(); ++i) pieces[i] = std::uint32_t(extra(lo, areas[i]));
@@ -206,21 +233,33 @@ PresplitPlan plan_presplit(std::span<const float> areas, float extra, const Aabb
     // Serial, so the same sum and the same pieces for any thread count; summed per block of
     // 4096 and then over the blocks, the order in which a parallel pass summed them before
     // (another order rounds differently and may move a triangle across min_area).
+    // Four blocks at a time, each in its own sum, as one sum waits on each addition.
+    constexpr std::size_t kBlock = 4096, kBlocks = 4;
     double total = 0.0;
-    constexpr std::size_t kBlock = 4096;
-    for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    std::size_t begin = 0;
+    for (; begin + kBlocks * kBlock <= count; begin += kBlocks * kBlock) {
+        std::array<double, kBlocks> block{};
+        for (std::size_t i = begin; i < begin + kBlock; ++i)
+            for (std::size_t b = 0; b < kBlocks; ++b) block[b] += double(areas[i + b * kBlock]);
+        for (const double sum : block) total += sum;
+    }
+    for (; begin < count; begin += kBlock) {
         double block = 0.0;
         for (std::size_t i = begin; i < std::min(count, begin + kBlock); ++i)
             block += double(areas[i]);
         total += block;
     }
     const double min_area = kMinSplitArea * total / double(count);
-    std::vector<std::uint32_t> large;  // the triangles that may be cut
-    std::vector<float> large_areas;
-    for (std::size_t i = 0; i < areas.size(); ++i)
-        if (areas[i] >= min_area && areas[i] > 0.0f) {
-            large.push_back(std::uint32_t(i));
-            large_areas.push_back(areas[i]);
+    // The triangles that may be cut: counted, then written (push_back in the loop kept its
+    // counters in memory).
+    const auto may_cut = [&](float area) { return area >= min_area && area > 0.0f; };
+    const auto large_count = std::size_t(std::count_if(areas.begin(), areas.end(), may_cut));
+    std::vector<std::uint32_t> large(large_count);
+    std::vector<float> large_areas(large_count);
+    for (std::size_t i = 0, k = 0; i < count; ++i)
+        if (may_cut(areas[i])) {
+            large[k] = std::uint32_t(i);
+            large_areas[k++] = areas[i];
         }
     // A mesh of alike triangles has none to cut: no need to share out the budget.
     if (large.empty()) return {};

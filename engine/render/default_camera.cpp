@@ -2,10 +2,11 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <memory>
 #include <numbers>
 #include <vector>
 
-#include "trace/naive_tracer.h"
+#include "trace/tracer.h"
 
 namespace edacrt {
 namespace {
@@ -26,11 +27,13 @@ std::vector<Ray> horizontal_probes(const glm::vec3& origin) {
     return rays;
 }
 
+/// By EDACRT: the naive tracer's 98 rays against every triangle took 0.4 s on Conference
+/// before a render or the viewer's first frame; the recursion takes milliseconds.
 std::vector<Hit> closest_hits(const Scene& scene, const std::vector<Ray>& rays) {
-    NaiveTracer tracer;
-    tracer.set_scene(scene);
+    const std::unique_ptr<Tracer> tracer = make_tracer(Method::edacrt);
+    tracer->set_scene(scene);
     std::vector<Hit> hits(rays.size());
-    tracer.trace(rays, hits, Query::closest);
+    tracer->trace(rays, hits, Query::closest);
     return hits;
 }
 

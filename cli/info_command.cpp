@@ -49,8 +49,10 @@ nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, co
     nlohmann::json materials = nlohmann::json::array();
     for (const MaterialSummary& m : s.materials) {
         nlohmann::json textures = nlohmann::json::array();
-        for (const TextureMap& t : m.textures)
-            textures.push_back({{"keyword", t.keyword}, {"file", t.file}});
+        for (std::size_t k = 0; k < m.textures.size(); ++k)
+            textures.push_back({{"keyword", m.textures[k].keyword},
+                                {"file", m.textures[k].file},
+                                {"rendered", k == m.rendered_texture}});
         materials.push_back({{"name", m.name},
                              {"triangles", m.triangles},
                              {"model", m.model},
@@ -138,10 +140,11 @@ void print_text(const nlohmann::json& j) {
         const std::size_t shown = text_scan::WarningLimit::kWarningsPerKind;
         for (std::size_t i = 0; i < std::min(shown, m["textures"].size()); ++i)
             std::cout << "      " << text(m["textures"][i]["keyword"]) << " "
-                      << text(m["textures"][i]["file"]) << " (not rendered)\n";
+                      << text(m["textures"][i]["file"])
+                      << (m["textures"][i]["rendered"].get<bool>() ? " (rendered)\n"
+                                                                   : " (not rendered)\n");
         if (m["textures"].size() > shown)
-            std::cout << "      ... and " << m["textures"].size() - shown
-                      << " more textures (not rendered)\n";
+            std::cout << "      ... and " << m["textures"].size() - shown << " more textures\n";
     }
     const auto& c = j["camera"];
     std::cout << "  camera       from " << c["from"].get<std::string>() << ": eye " << v3(c["eye"])

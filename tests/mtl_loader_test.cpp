@@ -129,7 +129,6 @@ TEST(MtlLoader, UnmodelledKeywordsAreReportedOnceEach) {
         "refl -type sphere r.png\n",
         &warnings);
     const std::vector<std::string> expected = {
-        "m.mtl:2: MTL feature 'map_Kd' is not modelled (ignored)",
         "m.mtl:3: MTL feature 'd' is not modelled (ignored)",
         "m.mtl:4: MTL feature 'Tr' is not modelled (ignored)",
         "m.mtl:6: MTL feature 'bump' is not modelled (ignored)",
@@ -140,7 +139,7 @@ TEST(MtlLoader, UnmodelledKeywordsAreReportedOnceEach) {
 
 TEST(MtlLoader, WarningsAreAppended) {
     std::vector<std::string> warnings = {"earlier"};
-    parse("newmtl a\nmap_Kd a.png\n", &warnings);
+    parse("newmtl a\nmap_Ks a.png\n", &warnings);
     ASSERT_EQ(warnings.size(), 2u);
     EXPECT_EQ(warnings[0], "earlier");
 }

@@ -270,9 +270,9 @@ TEST(ObjLoader, MaterialNamesMayContainSpaces) {
 
 TEST(ObjLoader, MtlWarningsReachTheScene) {
     const Scene scene = parse("mtllib m.mtl\n" + std::string(kSquare) + "f 1 2 3\n",
-                              mtl_files({{"m.mtl", "newmtl a\nmap_Kd a.png\n"}}));
+                              mtl_files({{"m.mtl", "newmtl a\nmap_Ks a.png\n"}}));
     ASSERT_EQ(scene.warnings.size(), 1u);
-    EXPECT_TRUE(contains(scene.warnings[0], "m.mtl:2: MTL feature 'map_Kd' is not modelled"));
+    EXPECT_TRUE(contains(scene.warnings[0], "m.mtl:2: MTL feature 'map_Ks' is not modelled"));
 }
 
 TEST(ObjLoader, MtlErrorsNameTheMtlFileAndLine) {

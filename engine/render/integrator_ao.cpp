@@ -1,8 +1,11 @@
 // Ambient occlusion: the fraction of a cosine-weighted hemisphere around the geometric normal
-// that is open within ao_distance. One batch of camera rays, then one any-hit batch of
-// ao_samples rays per hit.
+// that is open within ao_distance, times the diffuse albedo (Kd and its texture): the radiance
+// of a Lambertian surface under a white sky of radiance 1 that nothing else reflects. One batch
+// of camera rays, then one any-hit batch of ao_samples rays per hit.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <glm/common.hpp>
 
 #include "render/wavefront.h"
 
@@ -27,11 +30,14 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
         wf.settings.ao_distance > 0.0f ? wf.settings.ao_distance : 0.25f * wf.shading.diagonal;
     std::vector<Ray>& ao_rays = b.secondary;
     ao_rays.resize(hit_pixels.size() * n);
+    std::vector<glm::vec3>& albedo = b.albedo;
+    albedo.resize(hit_pixels.size());
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, hit_pixels.size(), 256), [&](const auto& range) {
             for (std::size_t h = range.begin(); h != range.end(); ++h) {
                 const std::size_t i = hit_pixels[h];
                 const Surface s = make_surface(wf.scene, rays[i], hits[i]);
+                albedo[h] = glm::clamp(wf.scene.materials[s.material].kd, 0.0f, 1.0f) * s.texture;
                 const PixelSampler sampler = wf.sampler(begin + i);
                 for (std::size_t k = 0; k < n; ++k) {
                     const glm::vec2 u = sampler.get_2d(1, std::uint32_t(k), std::uint32_t(n));
@@ -49,7 +55,7 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
     for (std::size_t h = 0; h < hit_pixels.size(); ++h) {
         std::size_t open = 0;
         for (std::size_t k = 0; k < n; ++k) open += !ao_hits[h * n + k].hit();
-        radiance[hit_pixels[h]] = glm::vec3(float(open) / float(n));
+        radiance[hit_pixels[h]] = albedo[h] * (float(open) / float(n));
     }
     return true;
 }

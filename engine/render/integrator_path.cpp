@@ -80,7 +80,7 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
                 }
                 if (depth == settings.max_depth) continue;
 
-                const Bsdf& bsdf = wf.shading.bsdfs[s.material];
+                const Bsdf bsdf = wf.shading.bsdf(s);
                 const PixelSampler sampler = wf.sampler(begin + path.pixel);
                 const std::uint32_t pair = 1 + kPairsPerBounce * std::uint32_t(depth);
                 const glm::vec2 u_choice = sampler.get_2d(pair);  // light, lobe

@@ -36,7 +36,8 @@ bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
                 const Material& material = wf.scene.materials[s.material];
                 switch (wf.settings.primary) {
                     case PrimaryShading::eye_light:
-                        radiance[i] = material.kd * std::max(glm::dot(s.ns, -rays[i].dir), 0.0f);
+                        radiance[i] =
+                            material.kd * s.texture * std::max(glm::dot(s.ns, -rays[i].dir), 0.0f);
                         if (glm::dot(s.ng_stored, rays[i].dir) < 0.0f)  // emitters' front side
                             radiance[i] += glm::min(material.ke, glm::vec3(1.0f));
                         break;
@@ -44,7 +45,7 @@ bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
                         radiance[i] = 0.5f * s.ns + 0.5f;
                         break;
                     case PrimaryShading::albedo:
-                        radiance[i] = material.kd;
+                        radiance[i] = material.kd * s.texture;
                         break;
                     case PrimaryShading::depth:
                         radiance[i] = glm::vec3(std::clamp(1.0f - hit.t / eye_to_far, 0.0f, 1.0f));

@@ -33,6 +33,9 @@ std::string describe(const Material& m, const Bsdf& bsdf) {
                 text += " + Phong Ks " + colour(bsdf.ks) + ", Ns " + number(bsdf.exponent);
             break;
     }
+    if (m.diffuse_map && bsdf.kind == Bsdf::Kind::diffuse_glossy)
+        text += " times map_Kd (" + std::to_string(m.diffuse_map->width) + "x" +
+                std::to_string(m.diffuse_map->height) + ")";
     if (m.emissive()) text += "; emits Ke " + colour(m.ke);
     return text + " (illum " + std::to_string(m.illum) + ")";
 }
@@ -56,10 +59,20 @@ SceneSummary summarize_scene(const Scene& scene) {
         summary.model = describe(m, make_bsdf(m, &notes));
         summary.emissive = m.emissive();
         summary.textures = m.textures;
-        for (const TextureMap& texture : m.textures)
-            if (!texture.path.empty() && !std::filesystem::is_regular_file(texture.path))
+        // load_obj decodes the last map_Kd with a path, and warns when it cannot.
+        std::size_t decoded = std::size_t(-1);
+        for (std::size_t k = 0; k < m.textures.size(); ++k)
+            if (text_scan::equals_ignoring_case(m.textures[k].keyword, "map_Kd") &&
+                !m.textures[k].path.empty())
+                decoded = k;
+        if (m.diffuse_map) summary.rendered_texture = decoded;
+        for (std::size_t k = 0; k < m.textures.size(); ++k) {
+            const TextureMap& texture = m.textures[k];
+            if (k != decoded && !texture.path.empty() &&
+                !std::filesystem::is_regular_file(texture.path))
                 missing.add(s.warnings, "material '" + m.name + "': " + texture.keyword + " " +
                                             texture.file + " is missing (" + texture.path + ")");
+        }
     }
     missing.finish(s.warnings, scene.source);
     for (std::size_t i = 0; i < scene.triangle_count(); ++i) {

@@ -16,7 +16,8 @@ struct MaterialSummary {
     std::size_t triangles = 0;  // that use it
     std::string model;          // what the renderer makes of it ("Lambertian Kd 0.8 0.8 0.8")
     bool emissive = false;
-    std::vector<TextureMap> textures;  // named by the MTL, not rendered
+    std::vector<TextureMap> textures;                // named by the MTL
+    std::size_t rendered_texture = std::size_t(-1);  // the one rendered (map_Kd), if any
 };
 
 struct SceneSummary {

@@ -29,6 +29,16 @@ Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit) {
         }
     }
     s.material = scene.triangle_materials[prim];
+    const Material& material = scene.materials[s.material];
+    if (material.diffuse_map && !scene.triangle_texcoords.empty()) {
+        const auto& corners = scene.triangle_texcoords[prim];
+        if (corners[0] >= 0 && corners[1] >= 0 && corners[2] >= 0) {
+            const glm::vec2 uv = (1.0f - hit.u - hit.v) * scene.texcoords[std::size_t(corners[0])] +
+                                 hit.u * scene.texcoords[std::size_t(corners[1])] +
+                                 hit.v * scene.texcoords[std::size_t(corners[2])];
+            s.texture = material.diffuse_map->lookup(uv);
+        }
+    }
     return s;
 }
 

@@ -14,6 +14,15 @@
 
 namespace edacrt {
 
+struct Surface {
+    SurfacePoint point;
+    glm::vec3 ng_stored;  // unit geometric normal as the winding gives it
+    glm::vec3 ng;         // ...turned towards the incoming ray
+    glm::vec3 ns;         // unit shading normal on the side of ng
+    std::uint32_t material;
+    glm::vec3 texture{1.0f};  // the material's map_Kd at the hit, which multiplies Kd (1: none)
+};
+
 struct ShadingScene {
     explicit ShadingScene(const Scene& scene);
 
@@ -22,17 +31,17 @@ struct ShadingScene {
     Aabb bounds;
     float diagonal;                  // of `bounds`
     std::vector<std::string> notes;  // MTL settings that are approximated
+
+    /// The BSDF at the surface: its material's, with Kd times the texture.
+    Bsdf bsdf(const Surface& surface) const {
+        Bsdf b = bsdfs[surface.material];
+        b.kd *= surface.texture;
+        return b;
+    }
 };
 
-struct Surface {
-    SurfacePoint point;
-    glm::vec3 ng_stored;  // unit geometric normal as the winding gives it
-    glm::vec3 ng;         // ...turned towards the incoming ray
-    glm::vec3 ns;         // unit shading normal on the side of ng
-    std::uint32_t material;
-};
-
-/// The surface `hit` (a hit of `ray`) lies on.
+/// The surface `hit` (a hit of `ray`) lies on. Its texture needs texture coordinates at all
+/// three corners; a triangle without them shows Kd alone.
 Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit);
 
 /// A ray from the surface towards the unit direction `dir`, up to `tmax` (no epsilon: the

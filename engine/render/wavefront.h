@@ -54,6 +54,7 @@ struct WavefrontBuffers {
     std::vector<Ray> secondary_slots, secondary;
     std::vector<Hit> secondary_hits;
     std::vector<glm::vec3> shadow_light;  // unoccluded contribution of each shadow ray
+    std::vector<glm::vec3> albedo;        // AO: of each hit
     std::vector<std::uint8_t> alive, has_shadow;
     std::vector<std::uint32_t> indices;
 };

@@ -1,12 +1,15 @@
 #pragma once
 #include <glm/vec3.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "scene/texture.h"
+
 namespace edacrt {
 
-/// A texture an MTL statement names (map_Kd, bump, ...). Not rendered; `edacrt info` lists
-/// them and the files that are missing.
+/// A texture an MTL statement names (map_Kd, bump, ...). Only map_Kd is rendered (as
+/// Material::diffuse_map); `edacrt info` lists them and the files that are missing.
 struct TextureMap {
     std::string keyword;  // as written
     std::string file;     // as written
@@ -24,6 +27,9 @@ struct Material {
     float ni = 1.0f;     // index of refraction
     int illum = 2;       // MTL illumination model
     std::vector<TextureMap> textures{};
+    /// The decoded map_Kd (load_obj), which multiplies kd; null without one. Shared by the
+    /// materials that name the same file and by copies of the scene.
+    std::shared_ptr<const Texture> diffuse_map{};
 
     bool emissive() const { return ke.x > 0.0f || ke.y > 0.0f || ke.z > 0.0f; }
 };

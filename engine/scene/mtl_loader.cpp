@@ -98,6 +98,7 @@ class MtlParser {
                 while (tokens.next(token)) file = token;
                 if (!file.empty())
                     material.textures.push_back({std::string(keyword), std::string(file), {}});
+                if (is("map_Kd")) return;  // rendered (load_obj decodes it); its options are not
             }
             ignore(keyword);
         }

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
+#include <memory>
 #include <new>
 #include <optional>
 #include <string>
@@ -19,6 +20,7 @@
 
 #include "scene/mtl_loader.h"
 #include "scene/text_scan.h"
+#include "scene/texture.h"
 #include "util/error.h"
 
 namespace edacrt {
@@ -95,7 +97,8 @@ std::optional<std::string> read_file(const fs::path& path, std::string& why,
 
 struct Corner {
     std::uint32_t position;
-    std::int32_t normal;  // -1: none
+    std::int32_t normal;    // -1: none
+    std::int32_t texcoord;  // -1: none
 };
 
 /// What a face index refers to, for messages.
@@ -144,6 +147,9 @@ class ObjParser {
         if (has_normals_) {
             scene_.normals = std::move(normals_);
         }
+        if (has_texcoords_) {
+            scene_.texcoords = std::move(texcoords_);
+        }
         resolve_materials();
         return std::move(scene_);
     }
@@ -157,11 +163,13 @@ class ObjParser {
     void reserve() {
         std::size_t vertices = 0;
         std::size_t normals = 0;
+        std::size_t texcoords = 0;
         for (std::size_t pos = 0; pos + 1 < text_.size();) {
             const char c0 = text_[pos];
             const char c1 = text_[pos + 1];
             vertices += c0 == 'v' && is_blank(c1);
             normals += c0 == 'v' && c1 == 'n';
+            texcoords += c0 == 'v' && c1 == 't';
             faces_ += c0 == 'f' && is_blank(c1);
             pos = text_.find('\n', pos);
             if (pos == std::string_view::npos) break;
@@ -169,6 +177,7 @@ class ObjParser {
         }
         scene_.positions.reserve(vertices);
         normals_.reserve(normals);
+        texcoords_.reserve(texcoords);
         scene_.triangles.reserve(faces_);
         scene_.triangle_materials.reserve(faces_);
     }
@@ -250,10 +259,10 @@ class ObjParser {
     }
 
     void parse_texcoord(Tokens& tokens) {
-        // Scene has no texture coordinates; they are checked and counted for vt indices.
-        float uvw[3];
+        float uvw[3] = {0.0f, 0.0f, 0.0f};  // v defaults to 0 (a 1D texture); w is unused
         numbers(tokens, "vt", 1, 3, uvw);
-        ++texcoord_count_;
+        if (texcoords_.size() == kMaxElements) fail("too many texture coordinates");
+        texcoords_.emplace_back(uvw[0], uvw[1]);
     }
 
     void parse_face(Tokens& tokens) {
@@ -285,8 +294,9 @@ class ObjParser {
             }
         }
         if (v.empty()) fail("face corner " + quote(token) + " has no vertex index");
-        Corner corner{resolve(v, scene_.positions.size(), kVertexIndex), -1};
-        if (!vt.empty()) resolve(vt, texcoord_count_, kTexcoordIndex);
+        Corner corner{resolve(v, scene_.positions.size(), kVertexIndex), -1, -1};
+        if (!vt.empty())
+            corner.texcoord = std::int32_t(resolve(vt, texcoords_.size(), kTexcoordIndex));
         if (!vn.empty()) {
             const std::uint32_t n = resolve(vn, normals_.size(), kNormalIndex);
             if (normals_[n] != glm::vec3(0.0f)) corner.normal = static_cast<std::int32_t>(n);
@@ -329,6 +339,13 @@ class ObjParser {
             scene_.triangle_normals.assign(scene_.triangles.size() - 1, {-1, -1, -1});
         }
         if (has_normals_) scene_.triangle_normals.push_back({a.normal, b.normal, c.normal});
+        if (!has_texcoords_ && (a.texcoord >= 0 || b.texcoord >= 0 || c.texcoord >= 0)) {
+            has_texcoords_ = true;
+            scene_.triangle_texcoords.reserve(std::max(faces_, scene_.triangles.size()));
+            scene_.triangle_texcoords.assign(scene_.triangles.size() - 1, {-1, -1, -1});
+        }
+        if (has_texcoords_)
+            scene_.triangle_texcoords.push_back({a.texcoord, b.texcoord, c.texcoord});
     }
 
     void use_material(std::string_view name) {
@@ -454,10 +471,11 @@ class ObjParser {
 
     Scene scene_;
     std::vector<glm::vec3> normals_;
-    std::size_t texcoord_count_ = 0;
+    std::vector<glm::vec2> texcoords_;
     std::size_t faces_ = 0;        // estimated by reserve()
     std::vector<Corner> corners_;  // of the current face, reused
     bool has_normals_ = false;
+    bool has_texcoords_ = false;
     std::size_t degenerate_ = 0;
 
     std::vector<MaterialUse> uses_;  // [0]: faces before any usemtl
@@ -478,6 +496,32 @@ Scene parse_obj(std::string_view text, const std::string& source_name, const Mtl
     return ObjParser(text, source_name, read_mtl, std::string()).parse();
 }
 
+namespace {
+
+/// Decodes each material's map_Kd (the last one it names), each file once. A file that cannot
+/// be decoded leaves its materials with Kd alone, and a warning.
+void load_diffuse_maps(Scene& scene) {
+    std::unordered_map<std::string, std::shared_ptr<const Texture>> decoded;
+    WarningLimit unreadable{"unreadable textures"};
+    for (Material& material : scene.materials) {
+        const TextureMap* map = nullptr;
+        for (const TextureMap& texture : material.textures)
+            if (equals_ignoring_case(texture.keyword, "map_Kd") && !texture.path.empty())
+                map = &texture;
+        if (!map) continue;
+        auto [it, inserted] = decoded.try_emplace(map->path);
+        if (inserted) try {
+                it->second = std::make_shared<const Texture>(load_texture(map->path));
+            } catch (const InputError& e) {
+                unreadable.add(scene.warnings, std::string(e.what()) + "; Kd alone is used");
+            }
+        material.diffuse_map = it->second;
+    }
+    unreadable.finish(scene.warnings, scene.source);
+}
+
+}  // namespace
+
 Scene load_obj(const std::filesystem::path& path) {
     const std::string source = path.string();
     std::string why;
@@ -496,6 +540,7 @@ Scene load_obj(const std::filesystem::path& path) {
                          std::to_string(text->size()) + " bytes");
     }
     scene.inputs.insert(scene.inputs.begin(), source);
+    load_diffuse_maps(scene);
     return scene;
 }
 

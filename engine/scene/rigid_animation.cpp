@@ -143,15 +143,34 @@ struct Reader {
     }
 };
 
-/// Appends `part` to `scene`: its vertices, normals and materials after those already there.
+/// Per-corner indices (shading normals or texture coordinates) of `part`'s triangles after
+/// those of the scene's `first_triangle`, for all triangles once any object has them (-1: none).
+void append_corner_indices(std::vector<std::array<std::int32_t, 3>>& to,
+                           const std::vector<std::array<std::int32_t, 3>>& from,
+                           std::size_t first_triangle, std::size_t triangles, std::int32_t base) {
+    if (from.empty() && to.empty()) return;
+    to.resize(first_triangle, {-1, -1, -1});
+    for (std::size_t i = 0; i < triangles; ++i) {
+        std::array<std::int32_t, 3> n = {-1, -1, -1};
+        if (!from.empty())
+            for (int k = 0; k < 3; ++k)
+                if (from[i][k] >= 0) n[k] = from[i][k] + base;
+        to.push_back(n);
+    }
+}
+
+/// Appends `part` to `scene`: its vertices, normals, texture coordinates and materials after
+/// those already there.
 void append(Scene& scene, Scene part, const std::string& name) {
     const auto vertex_base = std::uint32_t(scene.positions.size());
     const auto normal_base = std::int32_t(scene.normals.size());
+    const auto texcoord_base = std::int32_t(scene.texcoords.size());
     const auto material_base = std::uint32_t(scene.materials.size());
     const std::size_t first_triangle = scene.triangles.size();
     scene.inputs.insert(scene.inputs.end(), part.inputs.begin(), part.inputs.end());
     scene.positions.insert(scene.positions.end(), part.positions.begin(), part.positions.end());
     scene.normals.insert(scene.normals.end(), part.normals.begin(), part.normals.end());
+    scene.texcoords.insert(scene.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
     scene.materials.insert(scene.materials.end(), part.materials.begin(), part.materials.end());
     for (auto tri : part.triangles) {
         for (std::uint32_t& v : tri) v += vertex_base;
@@ -159,18 +178,10 @@ void append(Scene& scene, Scene part, const std::string& name) {
     }
     for (const std::uint32_t m : part.triangle_materials)
         scene.triangle_materials.push_back(m + material_base);
-    // Normals per corner for all triangles once any object has them (-1: none).
-    if (!part.triangle_normals.empty() || !scene.triangle_normals.empty()) {
-        scene.triangle_normals.resize(first_triangle, {-1, -1, -1});
-        for (std::size_t i = 0; i < part.triangles.size(); ++i) {
-            std::array<std::int32_t, 3> n = {-1, -1, -1};
-            if (!part.triangle_normals.empty())
-                for (int k = 0; k < 3; ++k)
-                    if (part.triangle_normals[i][k] >= 0)
-                        n[k] = part.triangle_normals[i][k] + normal_base;
-            scene.triangle_normals.push_back(n);
-        }
-    }
+    append_corner_indices(scene.triangle_normals, part.triangle_normals, first_triangle,
+                          part.triangles.size(), normal_base);
+    append_corner_indices(scene.triangle_texcoords, part.triangle_texcoords, first_triangle,
+                          part.triangles.size(), texcoord_base);
     for (const std::string& warning : part.warnings)
         scene.warnings.push_back(name + ": " + warning);
 }

@@ -1,6 +1,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
@@ -24,6 +25,10 @@ struct Scene {
     /// triangle_normals is empty when no face had normals; a corner without one holds -1.
     std::vector<glm::vec3> normals;
     std::vector<std::array<std::int32_t, 3>> triangle_normals;
+    /// Optional texture coordinates (u, v), indexed the same way (texcoords,
+    /// triangle_texcoords).
+    std::vector<glm::vec2> texcoords;
+    std::vector<std::array<std::int32_t, 3>> triangle_texcoords;
 
     std::vector<std::uint32_t> triangle_materials;  // one per triangle, into materials
     std::vector<Material> materials;                // never empty once loaded

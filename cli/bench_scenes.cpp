@@ -137,7 +137,8 @@ BenchView bench_view(const Scene& scene, const std::string& name) {
         view.reason = "object, the scene's camera (" + measured + ")";
         view.camera = *scene.camera;
     } else {
-        view.reason = "object, framed from +z (" + measured + ")";
+        view.reason =
+            std::string("object, framed from ") + framing_side(box) + " (" + measured + ")";
         view.camera = frame_box(box);
     }
     validate(view.camera);

@@ -47,7 +47,7 @@ struct BenchView {
 /// interior when the manifest says so of `name`, or when it is enclosed: from that eye at least
 /// 95% of 256 rays in all directions hit something and at least 2/3 of those hit the front of a
 /// triangle (from inside a closed object one sees back faces). Other scenes (objects) use their
-/// own camera, else frame_box() from +z.
+/// own camera, else frame_box().
 BenchView bench_view(const Scene& scene, const std::string& name);
 
 }  // namespace edacrt::cli

@@ -63,7 +63,8 @@ nlohmann::json describe(const InfoOptions& o, const RenderSettings& settings, co
     const std::string from = o.camera.given()     ? "the camera options"
                              : scene.camera       ? "the scene"
                              : is_interior(scene) ? "inside the interior, above the floor"
-                                                  : "framing the bounds from +z";
+                                                  : std::string("framing the bounds from ") +
+                                                        framing_side(scene.bounds());
 
     // The renderer's state with a PNG written at the end, as `edacrt render` estimates it.
     const std::uint64_t renderer = render_memory_bytes(

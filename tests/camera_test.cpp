@@ -35,6 +35,17 @@ TEST(Camera, CornersSpanTheFieldOfView) {
     EXPECT_NEAR(glm::length(top_left.dir), 1.0f, 1e-6f);
 }
 
+TEST(Camera, ABoxClearlyDeeperThanWideIsFramedFromTheSide) {
+    EXPECT_STREQ(framing_side(Aabb{{-1, 0, -1}, {1, 2, 1}}), "+z");
+    EXPECT_STREQ(framing_side(Aabb{{-1, 0, -1.2f}, {1, 2, 1.2f}}), "+z");  // a little deeper
+    EXPECT_STREQ(framing_side(Aabb{{-0.47f, 0, -0.67f}, {0.47f, 1, 1.05f}}), "+x");  // Spot's
+    const Aabb deep{{-1, 0, -3}, {1, 2, 3}};
+    const Camera camera = frame_box(deep, 45.0f);
+    EXPECT_GT(camera.eye.x, deep.hi.x);
+    EXPECT_EQ(camera.eye.z, deep.center().z);
+    EXPECT_EQ(camera.look_at, deep.center());
+}
+
 TEST(Camera, FrameBoxSeesTheWholeBox) {
     const Aabb box{{-1, 0, -1}, {1, 2, 1}};
     const Camera camera = frame_box(box, 45.0f);

@@ -15,7 +15,8 @@ namespace {
 const std::array<CameraParam, 4> kCameraParams = {{
     {"eye",
      "camera position X,Y,Z (default: the scene's own camera; else inside an interior, near the "
-     "middle of the floor; else framing the scene from +z)",
+     "middle of the floor; else framing the scene from +z, or +x if it is clearly deeper than "
+     "wide)",
      3, &CameraOptions::eye, [](Camera& c) { return glm::value_ptr(c.eye); }, "%.4g", 0.0f, 0.0f},
     {"look-at", "point the camera looks at X,Y,Z", 3, &CameraOptions::look_at,
      [](Camera& c) { return glm::value_ptr(c.look_at); }, "%.4g", 0.0f, 0.0f},

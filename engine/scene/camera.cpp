@@ -10,14 +10,33 @@
 
 namespace edacrt {
 
+namespace {
+
+/// How far frame_box() backs off from the centre: until the bounding sphere fits the vertical
+/// field of view.
+float framing_distance(const Aabb& box, float vfov_degrees) {
+    const float radius = std::max(0.5f * glm::length(box.extent()), 1e-6f);
+    return radius / std::sin(0.5f * glm::radians(vfov_degrees));
+}
+
+}  // namespace
+
+const char* framing_side(const Aabb& box, float vfov_degrees) {
+    const glm::vec3 extent = box.extent();
+    // Clearly deeper: a box as deep as wide (the Buddha's, 0.81 by 0.81) keeps the front view.
+    if (!(extent.z > 1.25f * extent.x)) return "+z";
+    // Not where the eye would round onto the centre (a tiny box at x = 1e30).
+    const float x = box.center().x;
+    return x + framing_distance(box, vfov_degrees) != x ? "+x" : "+z";
+}
+
 Camera frame_box(const Aabb& box, float vfov_degrees) {
     Camera camera;
     camera.vfov_degrees = vfov_degrees;
     camera.look_at = box.center();
-    // Back off along +z until the bounding sphere fits the vertical field of view.
-    const float radius = std::max(0.5f * glm::length(box.extent()), 1e-6f);
-    const float distance = radius / std::sin(0.5f * glm::radians(vfov_degrees));
-    camera.eye = camera.look_at + glm::vec3(0.0f, 0.0f, distance);
+    const glm::vec3 side = framing_side(box, vfov_degrees)[1] == 'x' ? glm::vec3(1.0f, 0.0f, 0.0f)
+                                                                     : glm::vec3(0.0f, 0.0f, 1.0f);
+    camera.eye = camera.look_at + side * framing_distance(box, vfov_degrees);
     return camera;
 }
 

@@ -19,8 +19,12 @@ struct Camera {
     bool operator==(const Camera&) const = default;
 };
 
-/// A camera that looks at the box from the +z side (the open side of a Cornell box) and sees
-/// all of it.
+/// The side frame_box() looks from: +z (the open side of a Cornell box), or +x when the box is
+/// clearly deeper (z) than wide (x), for a side view of what is long along z (an animal, a
+/// vehicle: Spot the cow showed its back) rather than its end. "+z" or "+x".
+const char* framing_side(const Aabb& box, float vfov_degrees = 45.0f);
+
+/// A camera that looks at the box from framing_side() and sees all of it.
 Camera frame_box(const Aabb& box, float vfov_degrees = 45.0f);
 
 /// Throws InputError when the camera cannot form an image (eye == look_at, up parallel to the

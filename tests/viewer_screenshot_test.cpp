@@ -763,5 +763,39 @@ TEST(ViewerCommandLine, ErrorsQuotingFilesAreEscaped) {
                    "edacrt_viewer: error: script line 2: ");
 }
 
+// The viewer shows a scene's map_Kd as the CLI does (one engine path): a square whose texture
+// has red, green, blue and white quadrants, twice across, under the default of a scene without
+// emitters (ambient occlusion times the albedo).
+TEST(ViewerScreenshots, TexturesShowInTheViewer) {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup installs it)";
+    const test::TempDir dir;
+    // Quadrants of 2 x 2 texels: bilinear magnification keeps the middle of each one pure.
+    const unsigned char top[] = {255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 255, 0};
+    const unsigned char bottom[] = {0, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255, 255};
+    std::string ppm = "P6\n4 4\n255\n";
+    for (const unsigned char* row : {top, top, bottom, bottom}) ppm.append((const char*)row, 12);
+    dir.write("t.ppm", ppm);
+    dir.write("m.mtl", "newmtl m\nKd 1 1 1\nmap_Kd t.ppm\n");
+    const auto obj = dir.write("square.obj",
+                               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                               "vt 0 0\nvt 2 0\nvt 2 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3 4/4\n");
+    const auto shot = dir.path() / "textured.png";
+    const auto result = run_viewer_script(
+        dir.path(), "panels hidden\nwait-spp 2\nscreenshot " + shot.string() + "\nquit\n", 640, 400,
+        kSanitizedResolution + obj.string());
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const Image image = read_png(shot.string());
+    std::size_t red = 0, green = 0, blue = 0;
+    for (const glm::vec3& p : image.pixels) {
+        red += p.x > 0.3f && p.x > 4.0f * (p.y + p.z);
+        green += p.y > 0.3f && p.y > 4.0f * (p.x + p.z);
+        blue += p.z > 0.3f && p.z > 4.0f * (p.x + p.y);
+    }
+    const std::size_t some = image.pixels.size() / 200;  // the square is about a quarter
+    EXPECT_GT(red, some);
+    EXPECT_GT(green, some);
+    EXPECT_GT(blue, some);
+}
+
 }  // namespace
 }  // namespace edacrt

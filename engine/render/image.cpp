@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/texture.h"  // srgb_to_linear
 #include "util/error.h"
 #include "util/output_file.h"
 
@@ -22,10 +23,6 @@ namespace {
 float linear_to_srgb(float c) {
     c = c > 0.0f ? std::min(c, 1.0f) : 0.0f;  // NaN too becomes 0, not an undefined lround
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-float srgb_to_linear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 std::vector<std::uint8_t> to_srgb8(const Image& image) {
@@ -68,8 +65,7 @@ Image read_png(const std::filesystem::path& path) {
         throw InputError(path.string() + ": cannot read image (" + stbi_failure_reason() + ")");
     Image image(width, height);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            image.pixels[i][c] = srgb_to_linear(float(data.get()[3 * i + c]) / 255.0f);
+        for (int c = 0; c < 3; ++c) image.pixels[i][c] = srgb_to_linear(data.get()[3 * i + c]);
     return image;
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "render/bsdf.h"
+#include "scene/obj_loader.h"
 #include "scene/text_scan.h"
 
 namespace edacrt {
@@ -59,12 +60,10 @@ SceneSummary summarize_scene(const Scene& scene) {
         summary.model = describe(m, make_bsdf(m, &notes));
         summary.emissive = m.emissive();
         summary.textures = m.textures;
-        // load_obj decodes the last map_Kd with a path, and warns when it cannot.
-        std::size_t decoded = std::size_t(-1);
-        for (std::size_t k = 0; k < m.textures.size(); ++k)
-            if (text_scan::equals_ignoring_case(m.textures[k].keyword, "map_Kd") &&
-                !m.textures[k].path.empty())
-                decoded = k;
+        // load_obj decodes one map_Kd, and warns when it cannot.
+        const TextureMap* statement = diffuse_map_statement(m);
+        const std::size_t decoded =
+            statement ? std::size_t(statement - m.textures.data()) : std::size_t(-1);
         if (m.diffuse_map) summary.rendered_texture = decoded;
         for (std::size_t k = 0; k < m.textures.size(); ++k) {
             const TextureMap& texture = m.textures[k];

@@ -1,6 +1,10 @@
 #include "render/shading_scene.h"
 
+#include <array>
+#include <cstdint>
 #include <glm/geometric.hpp>
+#include <optional>
+#include <vector>
 
 namespace edacrt {
 
@@ -10,6 +14,23 @@ ShadingScene::ShadingScene(const Scene& scene) : lights(scene) {
     diagonal = bounds.empty() ? 0.0f : glm::length(bounds.hi - bounds.lo);
 }
 
+namespace {
+
+/// The per-corner `values` of triangle `prim` (indices `corners`, empty: none) interpolated at
+/// the hit; empty unless all three corners have one.
+template <class T>
+std::optional<T> at_hit(const std::vector<T>& values,
+                        const std::vector<std::array<std::int32_t, 3>>& corners, std::size_t prim,
+                        const Hit& hit) {
+    if (corners.empty()) return std::nullopt;
+    const auto& [a, b, c] = corners[prim];
+    if (a < 0 || b < 0 || c < 0) return std::nullopt;
+    return (1.0f - hit.u - hit.v) * values[std::size_t(a)] + hit.u * values[std::size_t(b)] +
+           hit.v * values[std::size_t(c)];
+}
+
+}  // namespace
+
 Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit) {
     const auto prim = std::size_t(hit.prim);
     const Triangle tri = scene.corners(prim);
@@ -18,27 +39,15 @@ Surface make_surface(const Scene& scene, const Ray& ray, const Hit& hit) {
     s.ng_stored = unit_normal(tri);
     s.ng = glm::dot(s.ng_stored, ray.dir) < 0.0f ? s.ng_stored : -s.ng_stored;
     s.ns = s.ng;
-    if (!scene.triangle_normals.empty()) {
-        const auto& corners = scene.triangle_normals[prim];
-        if (corners[0] >= 0 && corners[1] >= 0 && corners[2] >= 0) {
-            const glm::vec3 n = (1.0f - hit.u - hit.v) * scene.normals[std::size_t(corners[0])] +
-                                hit.u * scene.normals[std::size_t(corners[1])] +
-                                hit.v * scene.normals[std::size_t(corners[2])];
-            const float length = glm::length(n);
-            if (length > 0.0f) s.ns = glm::dot(n, s.ng) < 0.0f ? -n / length : n / length;
-        }
+    if (const auto n = at_hit(scene.normals, scene.triangle_normals, prim, hit)) {
+        const float length = glm::length(*n);
+        if (length > 0.0f) s.ns = glm::dot(*n, s.ng) < 0.0f ? -*n / length : *n / length;
     }
     s.material = scene.triangle_materials[prim];
     const Material& material = scene.materials[s.material];
-    if (material.diffuse_map && !scene.triangle_texcoords.empty()) {
-        const auto& corners = scene.triangle_texcoords[prim];
-        if (corners[0] >= 0 && corners[1] >= 0 && corners[2] >= 0) {
-            const glm::vec2 uv = (1.0f - hit.u - hit.v) * scene.texcoords[std::size_t(corners[0])] +
-                                 hit.u * scene.texcoords[std::size_t(corners[1])] +
-                                 hit.v * scene.texcoords[std::size_t(corners[2])];
-            s.texture = material.diffuse_map->lookup(uv);
-        }
-    }
+    if (material.diffuse_map)
+        if (const auto uv = at_hit(scene.texcoords, scene.triangle_texcoords, prim, hit))
+            s.texture = material.diffuse_map->lookup(*uv);
     return s;
 }
 

@@ -496,18 +496,23 @@ Scene parse_obj(std::string_view text, const std::string& source_name, const Mtl
     return ObjParser(text, source_name, read_mtl, std::string()).parse();
 }
 
+const TextureMap* diffuse_map_statement(const Material& material) {
+    const TextureMap* map = nullptr;
+    for (const TextureMap& texture : material.textures)
+        if (equals_ignoring_case(texture.keyword, "map_Kd") && !texture.path.empty())
+            map = &texture;
+    return map;
+}
+
 namespace {
 
-/// Decodes each material's map_Kd (the last one it names), each file once. A file that cannot
-/// be decoded leaves its materials with Kd alone, and a warning.
+/// Decodes each material's diffuse_map_statement(), each file once. A file that cannot be
+/// decoded leaves its materials with Kd alone, and a warning.
 void load_diffuse_maps(Scene& scene) {
     std::unordered_map<std::string, std::shared_ptr<const Texture>> decoded;
     WarningLimit unreadable{"unreadable textures"};
     for (Material& material : scene.materials) {
-        const TextureMap* map = nullptr;
-        for (const TextureMap& texture : material.textures)
-            if (equals_ignoring_case(texture.keyword, "map_Kd") && !texture.path.empty())
-                map = &texture;
+        const TextureMap* map = diffuse_map_statement(material);
         if (!map) continue;
         auto [it, inserted] = decoded.try_emplace(map->path);
         if (inserted) try {

@@ -18,6 +18,10 @@ using MtlReader = std::function<std::optional<std::string>(const std::string& na
 /// counted in Scene::warnings. Throws InputError "SOURCE:LINE: what" on malformed input.
 Scene parse_obj(std::string_view text, const std::string& source_name, const MtlReader& read_mtl);
 
+/// The map_Kd statement load_obj decodes into Material::diffuse_map: the material's last one
+/// whose file was resolved; null when it has none.
+const TextureMap* diffuse_map_statement(const Material& material);
+
 /// Reads and parses an OBJ file; MTL files are looked up beside it.
 Scene load_obj(const std::filesystem::path& path);
 

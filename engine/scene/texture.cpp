@@ -53,8 +53,8 @@ float srgb_to_linear(std::uint8_t encoded) { return srgb_table()[encoded]; }
 
 glm::vec3 Texture::lookup(glm::vec2 uv) const {
     const auto& table = srgb_table();
-    // Texel centres at half-integers; fract() of a huge coordinate loses its fraction, but
-    // stays in range.
+    // Texel centres at half-integers. The coordinate is first brought into [0, size) so that a
+    // huge one cannot overflow the index; wrap() catches what rounding leaves outside.
     const auto coordinate = [](float t, int size, long long& i0, float& f) {
         double x = std::isfinite(t) ? double(t) * size - 0.5 : 0.0;
         x -= std::floor(x / size) * size;  // into [0, size): keeps the fraction of large ones

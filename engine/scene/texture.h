@@ -21,7 +21,8 @@ struct Texture {
     glm::vec3 lookup(glm::vec2 uv) const;
 };
 
-/// The linear value of an 8-bit sRGB-encoded one (IEC 61966-2-1).
+/// The linear value of an 8-bit sRGB-encoded one (IEC 61966-2-1): texels, and the PNG and JPEG
+/// images read_png() reads.
 float srgb_to_linear(std::uint8_t encoded);
 
 /// Decodes an image file (any format FreeImage reads: JPEG, PNG, TGA, BMP, DDS, ...). Throws

@@ -41,7 +41,34 @@ def render_once(build, scene, method, args, stats):
     s = json.loads(stats.read_text())
     return {"seconds": s["prepare_seconds"] + s["render_seconds"],
             "trace_seconds": s["trace_seconds"], "batches": s["batches"], "rays": s["rays"],
-            "passes": len(s["passes"])}
+            "passes": len(s["passes"]), "parts": parts(s)}
+
+
+PARTS = ["prepare", "camera", "bounce:1", "bounce:2", "bounces 3+", "shadow rays",
+         "shading and the rest"]
+
+
+def part_of(batch):
+    """The part of the render a batch kind's time goes to: the camera rays and the first two
+    bounces (the whole image's paths) alone, the later bounces (after Russian roulette starts,
+    smaller and smaller batches) together, and all shadow rays together."""
+    kind, _, bounce = batch.partition(":")
+    if kind == "bounce" and int(bounce) >= 3:
+        return "bounces 3+"
+    return "shadow rays" if kind == "shadow" else batch
+
+
+def parts(stats):
+    """Seconds and rays by part: the per-frame build (prepare), the batches (part_of) and the
+    rest of the render (shading, sampling, the film)."""
+    out = {"prepare": {"seconds": stats["prepare_seconds"], "rays": 0, "batches": 0}}
+    for b in stats["batch_times"]:
+        part = out.setdefault(part_of(b["batch"]), {"seconds": 0.0, "rays": 0, "batches": 0})
+        for key in ("seconds", "rays", "batches"):
+            part[key] += b[key]
+    out["shading and the rest"] = {
+        "seconds": stats["render_seconds"] - stats["trace_seconds"], "rays": 0, "batches": 0}
+    return out
 
 
 def measure(build, scenes, args):
@@ -70,6 +97,10 @@ def measure(build, scenes, args):
                     "per_embree_range": [min(ratios), max(ratios)],
                     "batches": runs[method][0]["batches"], "rays": runs[method][0]["rays"],
                     "passes": runs[method][0]["passes"],
+                    "parts": {name: {"seconds_median": statistics.median(
+                                         x["parts"][name]["seconds"] for x in runs[method]),
+                                     "rays": part["rays"], "batches": part["batches"]}
+                              for name, part in runs[method][0]["parts"].items()},
                 })
     return rows
 
@@ -83,6 +114,23 @@ def table(rows):
                      f"{r['trace_seconds_median']:.3f} | {r['per_embree_median']:.2f} "
                      f"({low:.2f}-{high:.2f}) | {r['passes']} | {r['batches']} | "
                      f"{r['rays']:,} |")
+    return lines
+
+
+def parts_table(rows):
+    """Each part's median time for every method, and EDACRT's over Embree's."""
+    lines = ["| scene | part | batches | rays (edacrt) | " +
+             " | ".join(f"{m} ms" for m in METHODS) + " | edacrt / embree |",
+             "|---|---|---:|---:|" + "---:|" * len(METHODS) + "---:|"]
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        by_method = {r["method"]: r["parts"] for r in rows if r["scene"] == scene}
+        for name, part in sorted(by_method["edacrt"].items(), key=lambda p: PARTS.index(p[0])):
+            ms = {m: 1e3 * by_method[m][name]["seconds_median"] if name in by_method[m] else None
+                  for m in METHODS}
+            cells = " | ".join("n/a" if v is None else f"{v:.1f}" for v in ms.values())
+            ratio = (f"{ms['edacrt'] / ms['embree']:.2f}" if ms["embree"] else "n/a")
+            batches, rays = (f"{part['batches']}", f"{part['rays']:,}") if part["rays"] else ("", "")
+            lines.append(f"| {scene} | {name} | {batches} | {rays} | {cells} | {ratio} |")
     return lines
 
 
@@ -125,7 +173,11 @@ def main():
         "finished image (the per-frame build of Embree and the BVH included, loading the OBJ "
         "not); `x embree`: the median of the per-round ratios to Embree's render, and their "
         f"range. The figures: [{result.name}]({link}). Issue 26's target is 1.00 or less for "
-        "edacrt.", "", *table(rows), ""])
+        "edacrt.", "", *table(rows), "",
+        "Where the time goes: each part's median over the rounds (`prepare`: the per-frame "
+        "triangle data or build; a bounce's batch holds the paths still alive, so after Russian "
+        "roulette starts at bounce 3 the batches shrink; `shading and the rest`: the render's "
+        "time outside the tracer). The ratio is of the medians.", "", *parts_table(rows), ""])
     if args.readme:
         splice(ROOT / "bench" / "README.md", HEADING, section)
     print(section)

@@ -254,6 +254,12 @@ int render_frame(const RenderOptions& o, const FrameJob& frame, const RenderSett
         {"mrays_per_second", mrays},
         {"dropped_samples", total.dropped_samples},
         {"passes", passes}};
+    // Where the trace time went, batch by batch kind (camera, bounce:N, shadow:N, ao).
+    for (const BatchTimes& b : total.by_batch)
+        stats["batch_times"].push_back({{"batch", batch_name(b.id)},
+                                        {"batches", b.batches},
+                                        {"rays", b.rays},
+                                        {"seconds", b.seconds}});
     if (tracer.method() == Method::embree)
         stats["embree_mode"] = enum_name(kEmbreeModes, o.common.embree_mode);
     if (animated.animation) {

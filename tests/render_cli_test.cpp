@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <string>
 #include <thread>
 
 #include "cli_runner.h"
@@ -85,6 +87,39 @@ TEST_F(RenderCli, ReferenceErrorIsReportedAfterEveryPassAndFalls) {
     EXPECT_NE(test::run_cli(kSmall + "--samples-per-pass -1 --out " + path("x.png")).exit_code, 0);
     EXPECT_NE(test::run_cli(kSmall + "--samples-per-pass 1025 --out " + path("x.png")).exit_code,
               0);  // out of range, even where --spp is smaller
+}
+
+// --stats splits the trace time by batch kind: every batch, ray and second of the total is in
+// exactly one kind, the kinds are the path tracer's (camera, then bounce:N and shadow:N), and
+// each kind has one batch per pass.
+TEST_F(RenderCli, BatchTimesAccountForEveryBatchOfThePath) {
+    const auto result =
+        test::run_cli(kSmall + "--spp 6 --samples-per-pass 2 --max-depth 3 --stats " +
+                      path("s.json") + " --out " + path("x.png"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const auto stats = nlohmann::json::parse(std::ifstream(path("s.json")));
+    const auto& kinds = stats.at("batch_times");
+    ASSERT_FALSE(kinds.empty());
+    EXPECT_EQ(kinds[0].at("batch"), "camera");
+    std::uint64_t batches = 0, rays = 0;
+    double seconds = 0.0;
+    std::set<std::string> names;
+    for (const auto& kind : kinds) {
+        const std::string name = kind.at("batch");
+        EXPECT_TRUE(names.insert(name).second) << name << " twice";
+        EXPECT_TRUE(name == "camera" || name.starts_with("bounce:") || name.starts_with("shadow:"))
+            << name;
+        EXPECT_EQ(kind.at("batches").get<std::uint64_t>(), 3u) << name;  // 3 passes
+        EXPECT_GT(kind.at("rays").get<std::uint64_t>(), 0u) << name;
+        batches += kind.at("batches").get<std::uint64_t>();
+        rays += kind.at("rays").get<std::uint64_t>();
+        seconds += kind.at("seconds").get<double>();
+    }
+    EXPECT_EQ(names.count("bounce:3"), 1u);  // --max-depth 3: bounces 1-3
+    EXPECT_EQ(names.count("bounce:4"), 0u);
+    EXPECT_EQ(batches, stats.at("batches").get<std::uint64_t>());
+    EXPECT_EQ(rays, stats.at("rays").get<std::uint64_t>());
+    EXPECT_NEAR(seconds, stats.at("trace_seconds").get<double>(), 1e-9);
 }
 
 TEST_F(RenderCli, TimeBudgetStopsAProgressiveRender) {

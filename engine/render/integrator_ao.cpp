@@ -17,8 +17,7 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
     wf.camera_rays(begin, end, rays);
     std::vector<Hit>& hits = b.hits;
     hits.assign(rays.size(), Hit{});
-    wf.offer({}, rays, [&](std::size_t i) { return begin + i; });
-    if (!wf.trace(rays, hits, Query::closest)) return false;
+    if (!wf.trace({}, rays, hits, [&](std::size_t i) { return begin + i; })) return false;
 
     // Compact the hits; their AO rays are consecutive, ao_samples per hit.
     std::vector<std::uint32_t>& hit_pixels = b.indices;
@@ -47,9 +46,9 @@ bool render_ao(Wavefront& wf, std::size_t begin, std::size_t end, std::span<glm:
         });
     std::vector<Hit>& ao_hits = b.secondary_hits;
     ao_hits.assign(ao_rays.size(), Hit{});
-    wf.offer({BatchId::Kind::ao, 0}, ao_rays,
-             [&](std::size_t j) { return begin + hit_pixels[j / n]; });
-    if (!wf.trace(ao_rays, ao_hits, Query::any)) return false;
+    if (!wf.trace({BatchId::Kind::ao, 0}, ao_rays, ao_hits,
+                  [&](std::size_t j) { return begin + hit_pixels[j / n]; }))
+        return false;
 
     std::fill(radiance.begin(), radiance.end(), glm::vec3(0.0f));
     for (std::size_t h = 0; h < hit_pixels.size(); ++h) {

@@ -47,8 +47,8 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
     for (int depth = 0; !paths.empty(); ++depth) {
         hits.resize(rays.size());
         const BatchId id{depth == 0 ? BatchId::Kind::camera : BatchId::Kind::bounce, depth};
-        wf.offer(id, rays, [&](std::size_t i) { return begin + paths[i].pixel; });
-        if (!wf.trace(rays, hits, Query::closest)) return false;
+        if (!wf.trace(id, rays, hits, [&](std::size_t i) { return begin + paths[i].pixel; }))
+            return false;
         const std::size_t n = rays.size();
         next_rays.resize(n);
         shadow_rays.resize(n);
@@ -139,9 +139,9 @@ bool render_path(Wavefront& wf, std::size_t begin, std::size_t end, std::span<gl
             for (std::size_t k = 0; k < batch.size(); ++k) batch[k] = shadow_rays[shadow_index[k]];
             std::vector<Hit>& occluders = b.secondary_hits;
             occluders.assign(batch.size(), Hit{});
-            wf.offer({BatchId::Kind::shadow, depth}, batch,
-                     [&](std::size_t k) { return begin + paths[shadow_index[k]].pixel; });
-            if (!wf.trace(batch, occluders, Query::any)) return false;
+            if (!wf.trace({BatchId::Kind::shadow, depth}, batch, occluders,
+                          [&](std::size_t k) { return begin + paths[shadow_index[k]].pixel; }))
+                return false;
             for (std::size_t k = 0; k < batch.size(); ++k)
                 if (!occluders[k].hit())
                     radiance[paths[shadow_index[k]].pixel] += shadow_light[shadow_index[k]];

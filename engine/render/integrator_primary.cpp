@@ -16,8 +16,7 @@ bool render_primary(Wavefront& wf, std::size_t begin, std::size_t end,
     wf.camera_rays(begin, end, rays);
     std::vector<Hit>& hits = wf.buffers.hits;
     hits.assign(rays.size(), Hit{});
-    wf.offer({}, rays, [&](std::size_t i) { return begin + i; });
-    if (!wf.trace(rays, hits, Query::closest)) return false;
+    if (!wf.trace({}, rays, hits, [&](std::size_t i) { return begin + i; })) return false;
 
     const float far = std::max(wf.shading.diagonal, 1e-30f);
     const Aabb& box = wf.shading.bounds;

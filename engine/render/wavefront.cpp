@@ -39,14 +39,14 @@ std::vector<Ray> first_pass_camera_rays(const Camera& camera, const RenderSettin
     return rays;
 }
 
-bool Wavefront::trace(std::span<const Ray> rays, std::span<Hit> hits, Query query) {
-    if (cancelled()) return false;
+void Wavefront::trace_timed(BatchId id, std::span<const Ray> rays, std::span<Hit> hits) {
     const auto start = std::chrono::steady_clock::now();
-    stats.trace += tracer.trace(rays, hits, query);
-    stats.trace_seconds +=
+    stats.trace += tracer.trace(rays, hits, batch_query(id));
+    const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.trace_seconds += seconds;
     ++stats.batches;
-    return true;
+    stats.add_batch({id, 1, rays.size(), seconds});
 }
 
 }  // namespace edacrt

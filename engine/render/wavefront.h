@@ -3,6 +3,7 @@
 // tracer (every batch of rays goes through trace()), the sample generator and the statistics.
 // A pass renders `samples` samples of every pixel; its paths are numbered sample-major, path
 // p being sample p / pixels of pixel p % pixels, and a wavefront is a range of them.
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -18,6 +19,15 @@
 
 namespace edacrt {
 
+/// The batches of one kind traced so far: how many, their rays and the time inside the tracer.
+/// A path tracer's late bounces are small batches, where a tracer's cost per batch shows.
+struct BatchTimes {
+    BatchId id;
+    std::uint64_t batches = 0;
+    std::uint64_t rays = 0;
+    double seconds = 0.0;
+};
+
 /// Counters of one pass (or, summed, of a whole render).
 struct PassStats {
     TraceStats trace;                   // summed over all batches
@@ -25,13 +35,26 @@ struct PassStats {
     double trace_seconds = 0.0;         // inside Tracer::trace
     double seconds = 0.0;               // the whole pass
     std::uint64_t dropped_samples = 0;  // non-finite radiance replaced by black
+    std::vector<BatchTimes> by_batch;   // trace_seconds by kind, in the order first traced
 
+    void add_batch(const BatchTimes& times) {
+        const auto same = std::find_if(by_batch.begin(), by_batch.end(),
+                                       [&](const BatchTimes& b) { return b.id == times.id; });
+        if (same == by_batch.end()) {
+            by_batch.push_back(times);
+            return;
+        }
+        same->batches += times.batches;
+        same->rays += times.rays;
+        same->seconds += times.seconds;
+    }
     PassStats& operator+=(const PassStats& o) {
         trace += o.trace;
         batches += o.batches;
         trace_seconds += o.trace_seconds;
         seconds += o.seconds;
         dropped_samples += o.dropped_samples;
+        for (const BatchTimes& b : o.by_batch) add_batch(b);
         return *this;
     }
 };
@@ -83,18 +106,23 @@ struct Wavefront {
     /// Camera rays of paths [begin, end), jittered within the pixel (sample pair 0).
     void camera_rays(std::size_t begin, std::size_t end, std::vector<Ray>& rays) const;
 
-    /// Gives `rays` to the capture if they are the batch it takes; path_of(i) is the pass's path
-    /// number of ray i (its pixel: path % pixels).
+    /// Traces batch `id` (closest or any hit as batch_query(id) says), timed; the capture
+    /// takes it first if it names it, path_of(i) being the pass's path number of ray i (its
+    /// pixel: path % pixels). Returns false, tracing nothing, when cancelled.
     template <class PathOf>
-    void offer(BatchId id, std::span<const Ray> rays, PathOf path_of) const {
-        if (!capture || !(capture->id == id)) return;
-        capture->rays.insert(capture->rays.end(), rays.begin(), rays.end());
-        for (std::size_t i = 0; i < rays.size(); ++i)
-            capture->pixels.push_back(std::uint32_t(path_of(i) % pixels));
+    bool trace(BatchId id, std::span<const Ray> rays, std::span<Hit> hits, PathOf path_of) {
+        if (cancelled()) return false;
+        if (capture && capture->id == id) {
+            capture->rays.insert(capture->rays.end(), rays.begin(), rays.end());
+            for (std::size_t i = 0; i < rays.size(); ++i)
+                capture->pixels.push_back(std::uint32_t(path_of(i) % pixels));
+        }
+        trace_timed(id, rays, hits);
+        return true;
     }
 
-    /// Traces one batch (timed). Returns false, tracing nothing, when cancelled.
-    bool trace(std::span<const Ray> rays, std::span<Hit> hits, Query query);
+  private:
+    void trace_timed(BatchId id, std::span<const Ray> rays, std::span<Hit> hits);
 };
 
 /// The camera rays of the first pass's first sample, one per pixel row by row: the batch whose

@@ -33,6 +33,8 @@ GENERATORS = {
     "bench": (["bench/bench_run.py", "--readme"], ["## edacrt bench, measured"]),
     "dynamic": (["bench/dynamic.py", "--readme"], ["## Dynamic scenes"]),
     "render": (["bench/render_bench.py", "--readme"], ["## The render, against Embree"]),
+    # Last: it reads the sections above.
+    "targets": (["bench/targets.py", "--readme"], ["## Issue 26's targets, measured"]),
 }
 
 

@@ -187,6 +187,49 @@ TEST(EdacrtThreads, TheRecursionIsTheSameForAnyThreadCountAndAfterFirstOnOne) {
     }
 }
 
+/// Speculation: with few rays over many triangles, second children run beside first ones on
+/// copies of the rays (the statistics count those nodes); the statistics run, which takes the
+/// children in turn, finds the same hits, counters and statistics, on 2 threads as on 4, and
+/// each ray the distance the paper's order finds (after-first; a tie may name another
+/// triangle at that distance).
+TEST(EdacrtThreads, SpeculationKeepsThePapersHitsAndItsStatisticsRun) {
+    const Scene scene = make_builtin_scene("builtin:sphere:subdiv=6");
+    std::vector<Ray> rays;
+    const PinholeProjection projection(frame_box(scene.bounds()), 100, 100);
+    for (int y = 0; y < 100; ++y)
+        for (int x = 0; x < 100; ++x) rays.push_back(projection.ray(x + 0.5f, y + 0.5f));
+    const std::vector<Ray> random = random_rays(5'000);
+    rays.insert(rays.end(), random.begin(), random.end());
+    EdacrtParams after_first;
+    after_first.second_child = SecondChild::after_first;
+    const auto tracer = make_tracer(Method::edacrt);
+    const auto waiting = make_tracer(Method::edacrt, after_first);
+    tracer->set_scene(scene);
+    waiting->set_scene(scene);
+    const Traced two = trace_detailed(*tracer, rays, Query::closest, 2);
+    std::uint64_t speculated = 0;
+    for (const LevelStats& level : two.detail.levels) speculated += level.speculated;
+    EXPECT_GT(speculated, 0u) << "no node speculated";
+    TraceStats detailed;  // the statistics run's counters are the fast run's
+    for (const LevelStats& level : two.detail.levels) {
+        detailed.ray_box_tests += level.ray_box_tests;
+        detailed.ray_triangle_tests += level.ray_triangle_tests;
+    }
+    EXPECT_EQ(detailed.ray_box_tests + two.detail.root.box_tests, two.totals.ray_box_tests);
+    EXPECT_EQ(detailed.ray_triangle_tests, two.totals.ray_triangle_tests);
+    SCOPED_TRACE("4 threads");
+    expect_same(two, trace_detailed(*tracer, rays, Query::closest, 4));
+    const Traced paper = trace_detailed(*waiting, rays, Query::closest, 2);
+    std::size_t hits = 0, ties = 0;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        hits += paper.hits[i].hit();
+        ASSERT_EQ(two.hits[i].t, paper.hits[i].t) << "ray " << i;
+        ties += two.hits[i].prim != paper.hits[i].prim;
+    }
+    EXPECT_GT(hits, rays.size() / 4);
+    EXPECT_LT(ties, rays.size() / 100);
+}
+
 std::vector<Method> methods() {
     std::vector<Method> out = {Method::naive, Method::edacrt, Method::dacrt, Method::bvh};
 #ifdef EDACRT_HAS_EMBREE

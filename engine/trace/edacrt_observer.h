@@ -72,6 +72,25 @@ class RecordingObserver {
         if (!detail_.hit_node.empty()) detail_.hit_node[ray] = entered_record_;
     }
     void leaf(Visit& visit, const Node& node, std::uint64_t tests);
+    /// The node runs its second child as if beside the first (speculation).
+    void speculated(const Node& node) { ++level(node.depth).speculated; }
+    /// What the observer keeps of a ray's hit, so that a hit the recursion then drops (the
+    /// farther of a speculating node's two) can be taken back.
+    struct HitState {
+        std::uint64_t path = 0, both = 0;
+        std::uint16_t depth = 0;
+        std::int32_t node = -1;
+    };
+    HitState hit_state(std::uint32_t ray) const {
+        return {hit_path_[ray], both_at_hit_[ray], hit_depth_[ray],
+                detail_.hit_node.empty() ? -1 : detail_.hit_node[ray]};
+    }
+    void restore_hit(std::uint32_t ray, const HitState& state) {
+        hit_path_[ray] = state.path;
+        both_at_hit_[ray] = state.both;
+        hit_depth_[ray] = state.depth;
+        if (!detail_.hit_node.empty()) detail_.hit_node[ray] = state.node;
+    }
 
     /// Order statistics from each ray's final hit; call once after the recursion.
     void finish(std::span<const Hit> hits);

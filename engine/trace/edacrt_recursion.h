@@ -18,6 +18,9 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "geometry/aabb.h"
@@ -91,6 +94,10 @@ struct NullObserver {
     void leaf_ray(std::uint32_t, std::uint32_t) {}
     void hit(std::uint32_t, const Node&) {}
     void leaf(Visit&, const Node&, std::uint64_t) {}
+    void speculated(const Node&) {}
+    struct HitState {};
+    HitState hit_state(std::uint32_t) const { return {}; }
+    void restore_hit(std::uint32_t, const HitState&) {}
 };
 
 /// Paths record the first 64 levels; order statistics cover those.
@@ -219,6 +226,17 @@ class Recursion {
         // brute-force leaf over all its triangles), so only a missed part large enough for a
         // task of its own is split off, and only where a task can run beside the first child
         // (split_second_): a smaller part waits for the first child, as in the paper.
+        // Speculation (speculates()): a node of few rays and many triangles runs its second
+        // child beside the first on a copy of its rays; a statistics run, in turn, as if beside.
+        if (speculates(node, split)) {
+            obs_.speculated(node);
+            if constexpr (Observer::kConcurrent)
+                run_beside(first, child(second_side, 1, 0, node.ray_count), second_skipped);
+            else
+                run_as_if_beside(first, node.ray_count,
+                                 [&] { return second(node.ray_begin, node.ray_count); });
+            return;
+        }
         const std::size_t missed = node.ray_count - first.ray_count;
         if (!split_second_ || missed < kTaskRays) {
             run(first);
@@ -250,7 +268,100 @@ class Recursion {
     /// tests per ray with the share, as before the rule, and 53 without it).
     static constexpr float kTaskShare = 0.2f;
 
+    /// Speculation, for closest-hit nodes of few rays and many triangles: too few rays for
+    /// SecondChild::split's task to pay for the second child's second recursion (binning and
+    /// partitions are work per triangle, whatever the rays), so a thread would idle. The second
+    /// child runs beside the first instead, on a copy of the node's rays, no hit of the first
+    /// child culling them; each ray then keeps the hit the paper's order would have kept. Any-hit
+    /// rays stay in the paper's order: one hit in the first child ends a ray, and without that
+    /// the second child did more work than the task saved (the bunny's shadow rays: 5%).
+    static constexpr std::size_t kSpeculateRays = 32768;      // the copy's bound: 1.8 MB
+    static constexpr std::size_t kSpeculateTriangles = 4096;  // in each child
+
   private:
+    bool speculates(const Node& node, const Split& split) const {
+        return Q == Query::closest && split_second_ && node.ray_count <= kSpeculateRays &&
+               std::min(split.count[0], split.count[1]) >= kSpeculateTriangles;
+    }
+
+    /// The first child on this batch and `second` (its rays: all the node's, from position 0)
+    /// on a copy of the node's rays with hits of its own, side by side. The copy starts with each
+    /// ray's current hit, so the leaves' skip of the current triangle (kSkipsCurrentHit) holds.
+    void run_beside(const Node& first, Node second, bool second_skipped) {
+        const std::size_t begin = first.ray_begin, n = second.ray_count;
+        RayStreamStorage storage;
+        const RayStream rays = storage.fill(batch_.stream, begin, n);
+        // The copy's rays are numbered from 0, its hits in that order.
+        const std::vector<std::uint32_t> ids(rays.id, rays.id + n);
+        std::iota(rays.id, rays.id + n, std::uint32_t(0));
+        std::vector<Hit> hits(n);
+        for (std::size_t i = 0; i < n; ++i) hits[i] = batch_.hits[ids[i]];
+        const RayBatch copy{rays, hits.data()};  // outlives `beside`, which keeps a reference
+        Recursion beside(p_, scene_, copy, scratches_, obs_);
+        if (!second_skipped) second.ray_count = beside.filter(0, n, second.box);
+        tbb::task_group task;
+        task.run([&] { beside.run(second); });
+        run(first);
+        task.wait();
+        keep_nearer(first.ray_begin, n, ids, hits);
+        const TraceStats tests = beside.totals();
+        box_tests_ += tests.ray_box_tests;
+        triangle_tests_ += tests.ray_triangle_tests;
+    }
+
+    /// What run_beside does, one child after the other on this batch, so that statistics see
+    /// the rays by their numbers and stream positions: the second child (`second()`, which
+    /// filters the node's `count` rays) gets them as the first child found them, and the
+    /// node's part of the stream is left as the first child leaves it.
+    template <class SecondChild>
+    void run_as_if_beside(const Node& first, std::size_t count, const SecondChild& second) {
+        const std::size_t begin = first.ray_begin;
+        const RayStream& s = batch_.stream;
+        RayStreamStorage before_storage, after_storage;
+        const RayStream before = before_storage.fill(s, begin, count);
+        const std::span<const std::uint32_t> ids(before.id, count);
+        std::vector<Hit> start(count), first_hits(count), second_hits(count);
+        for (std::size_t i = 0; i < count; ++i) start[i] = batch_.hits[ids[i]];
+        run(first);
+        // The statistics' record of each ray's hit, as the first child leaves it.
+        std::vector<typename Observer::HitState> first_state(count);
+        for (std::size_t i = 0; i < count; ++i) first_state[i] = obs_.hit_state(ids[i]);
+        const RayStream after = after_storage.fill(s, begin, count);
+        for (std::size_t i = 0; i < count; ++i) {
+            first_hits[i] = std::exchange(batch_.hits[ids[i]], start[i]);
+        }
+        copy_rays(before, 0, s, begin, count);
+        run(second());
+        for (std::size_t i = 0; i < count; ++i)
+            second_hits[i] = std::exchange(batch_.hits[ids[i]], first_hits[i]);
+        copy_rays(after, 0, s, begin, count);
+        keep_nearer(begin, count, ids, second_hits);
+        for (std::size_t i = 0; i < count; ++i)
+            if (!nearer(second_hits[i], first_hits[i])) obs_.restore_hit(ids[i], first_state[i]);
+    }
+
+    /// Whether the second child's hit replaces the first child's (keep_nearer).
+    static bool nearer(const Hit& second, const Hit& first) {
+        return second.hit() && second.t <= first.t;
+    }
+
+    /// Each of the node's rays (stream positions [begin, + count), numbered `ids` in the order
+    /// of `second_hits`) keeps the hit the paper's order would: there the second child meets a
+    /// ray with the first child's hit as its t_far and takes a hit at t <= t_far, so the second
+    /// child's hit wins when it is at most as far. The rays then carry their hits' distances
+    /// on (t_far), as after the paper's order.
+    void keep_nearer(std::size_t begin, std::size_t count, std::span<const std::uint32_t> ids,
+                     std::span<const Hit> second_hits) {
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+            Hit& hit = batch_.hits[ids[i]];
+            if (nearer(second_hits[i], hit)) hit = second_hits[i];
+        }
+        const RayStream& s = batch_.stream;
+        for (std::size_t i = begin; i < begin + count; ++i)
+            if (const Hit& hit = batch_.hits[s.id[i]]; hit.hit())
+                s.t_far[i] = std::min(s.t_far[i], hit.t);
+    }
+
     /// The calling thread's scratch, sized for this recursion.
     RecursionScratch& scratch() {
         RecursionScratch& s = scratches_.local();

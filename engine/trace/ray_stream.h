@@ -37,6 +37,10 @@ struct RayStream {
     SlabRay slab_ray(std::size_t i) const { return make_slab_ray(ray(i)); }
 };
 
+/// Copies rays [from_begin, + count) of `from` over `to`'s from to_begin, all nine arrays.
+void copy_rays(const RayStream& from, std::size_t from_begin, const RayStream& to,
+               std::size_t to_begin, std::size_t count);
+
 /// One batch: the stream the recursion partitions, and the hits, indexed by the ray's number
 /// (its id in the stream).
 struct RayBatch {
@@ -50,9 +54,15 @@ class RayStreamStorage {
   public:
     /// Fills the stream with `rays` in order (in parallel), t_far = tmax, and returns it.
     RayStream fill(std::span<const Ray> rays);
+    /// Fills the stream with rays [begin, begin + count) of `from` as they are now (t_far and
+    /// numbers included; sequential: for a part of a recursion), and returns it.
+    RayStream fill(const RayStream& from, std::size_t begin, std::size_t count);
     std::size_t bytes() const { return capacity_ * RayStream::kBytesPerRay; }
 
   private:
+    /// The stream's arrays for `n` rays, reallocated only to grow.
+    RayStream reserve(std::size_t n);
+
     struct FreeAligned {
         void operator()(float* p) const;
     };

@@ -46,6 +46,7 @@ nlohmann::json stats_json(const TraceDetail& detail) {
                           {"filters_done", l.filters_done},
                           {"filters_skipped", l.filters_skipped},
                           {"second_splits", l.second_splits},
+                          {"speculated", l.speculated},
                           {"triangles", l.triangles},
                           {"ray_box_tests", l.ray_box_tests},
                           {"sample_box_tests", l.sample_box_tests},

@@ -50,6 +50,8 @@ struct LevelStats {
     std::uint64_t filters_skipped = 0;   // ...or passed down unfiltered (filter skipping)
     std::uint64_t second_splits = 0;     // nodes whose second child got its rays in two parts
                                          // (SecondChild::split): one more child ray set each
+    std::uint64_t speculated = 0;        // nodes whose second child ran beside the first, on a
+                                         // copy of their rays (Recursion::speculates)
     std::uint64_t triangles = 0;         // summed over the level's nodes
     std::uint64_t ray_box_tests = 0;     // sample_box_tests + filter_box_tests
     std::uint64_t sample_box_tests = 0;  // sampled rays against the candidates' boxes
@@ -108,6 +110,7 @@ struct LevelStats {
         rays_passed += o.rays_passed;
         filters_done += o.filters_done;
         second_splits += o.second_splits;
+        speculated += o.speculated;
         filters_skipped += o.filters_skipped;
         triangles += o.triangles;
         ray_box_tests += o.ray_box_tests;

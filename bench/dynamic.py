@@ -86,7 +86,8 @@ def figure(results, path):
         ax.yaxis.set_major_formatter(plain)
         ax.yaxis.set_minor_formatter(ticker.FuncFormatter(
             lambda v, _: f"{v:g}" if f"{v:g}"[0] in "25" else ""))
-        ax.set_xlabel("rays per triangle (camera rays, 1 spp; circles: the 1/4/16-spp sets)")
+        spp = "/".join(str(n) for n in results["settings"]["spp"])
+        ax.set_xlabel(f"rays per triangle (camera rays, 1 spp; circles: the {spp}-spp sets)")
         ax.set_ylabel("per-frame time, update + trace (ms)")
         ax.set_title(f"{scene} ({triangles:,} triangles), {results['settings']['animation']}")
         ax.grid(True, which="both", alpha=0.3)

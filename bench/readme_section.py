@@ -24,6 +24,19 @@ def revision():
                    else "")
 
 
+def sections(text):
+    """{heading: its lines} for every '## ' section of `text`; "" holds the lines above the
+    first."""
+    found, current = {"": []}, ""
+    for line in text.splitlines():
+        if line.startswith("## "):
+            current = line
+            found[current] = []
+        else:
+            found[current].append(line)
+    return found
+
+
 def generated_line(command, machine=None, seconds=None, rev=None, note=""):
     """The sentence every generated section starts with (and `note`), and its machine-readable
     marker; `rev`: the revision that measured, when the section is remade from stored results."""

@@ -17,7 +17,7 @@ import sys
 import time
 
 from bench_common import ROOT
-from readme_section import MARKER
+from readme_section import MARKER, sections
 
 README = ROOT / "bench" / "README.md"
 # name: (command, headings it writes). The order is the README's.
@@ -47,23 +47,17 @@ def section_revisions(text):
     """{heading: recorded revision or None} for the generators' headings in `text`: the marker
     inside the section; for report.py's sections, the one above them (it names its revision
     once, under the title)."""
-    sections, current = {"": []}, ""
-    for line in text.splitlines():
-        if line.startswith("## "):
-            current = line
-            sections[current] = []
-        else:
-            sections[current].append(line)
+    found_sections = sections(text)
 
     def marked(lines):
         return next((m.group(1) for line in lines if (m := MARKER.search(line))), None)
 
     found = {}
     for name, (_, headings) in GENERATORS.items():
-        shared = marked(sections[""]) if name == "report" else None
+        shared = marked(found_sections[""]) if name == "report" else None
         for heading in headings:
-            if heading in sections:
-                found[heading] = marked(sections[heading]) or shared
+            if heading in found_sections:
+                found[heading] = marked(found_sections[heading]) or shared
     return found
 
 

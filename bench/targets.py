@@ -14,22 +14,10 @@ import re
 import sys
 from pathlib import Path
 
-from readme_section import MARKER, README, generated_line, splice
+from readme_section import MARKER, README, generated_line, sections, splice
 
 HEADING = "## Issue 26's targets, measured"
 LARGE = ["bunny", "sponza", "sibenik", "conference"]
-
-
-def sections(text):
-    """{heading: its lines} for every '## ' section."""
-    out, current = {}, None
-    for line in text.splitlines():
-        if line.startswith("## "):
-            current = line
-            out[current] = []
-        elif current:
-            out[current].append(line)
-    return out
 
 
 class Missing(Exception):

@@ -35,6 +35,15 @@ std::vector<Ray> random_rays(std::size_t count) {
     return rays;
 }
 
+/// Pixel-centre camera rays framing `scene` at size x size pixels, then `random` random rays.
+std::vector<Ray> camera_and_random_rays(const Scene& scene, int size, std::size_t random) {
+    std::vector<Ray> rays =
+        PinholeProjection(frame_box(scene.bounds()), size, size).pixel_centre_rays();
+    const std::vector<Ray> more = random_rays(random);
+    rays.insert(rays.end(), more.begin(), more.end());
+    return rays;
+}
+
 /// Traces in an arena of `threads` slots (more than this machine's cores is fine: the point is
 /// concurrent access, which ThreadSanitizer checks).
 std::vector<Hit> trace(Tracer& tracer, const std::vector<Ray>& rays, Query query, int threads) {
@@ -154,12 +163,7 @@ void expect_same(const Traced& a, const Traced& b) {
 /// on the order.
 TEST(EdacrtThreads, TheRecursionIsTheSameForAnyThreadCountAndAfterFirstOnOne) {
     const Scene scene = make_builtin_scene("builtin:sphere:subdiv=5");
-    std::vector<Ray> rays;
-    const PinholeProjection projection(frame_box(scene.bounds()), 300, 300);
-    for (int y = 0; y < 300; ++y)
-        for (int x = 0; x < 300; ++x) rays.push_back(projection.ray(x + 0.5f, y + 0.5f));
-    const std::vector<Ray> random = random_rays(20'000);
-    rays.insert(rays.end(), random.begin(), random.end());
+    const std::vector<Ray> rays = camera_and_random_rays(scene, 300, 20'000);
     ASSERT_GE(rays.size(), 100'000u);
     for (const EdacrtParams& p : {EdacrtParams{}, paper_params(), dacrt_params()}) {
         EdacrtParams after_first = p;
@@ -194,12 +198,7 @@ TEST(EdacrtThreads, TheRecursionIsTheSameForAnyThreadCountAndAfterFirstOnOne) {
 /// triangle at that distance).
 TEST(EdacrtThreads, SpeculationKeepsThePapersHitsAndItsStatisticsRun) {
     const Scene scene = make_builtin_scene("builtin:sphere:subdiv=6");
-    std::vector<Ray> rays;
-    const PinholeProjection projection(frame_box(scene.bounds()), 100, 100);
-    for (int y = 0; y < 100; ++y)
-        for (int x = 0; x < 100; ++x) rays.push_back(projection.ray(x + 0.5f, y + 0.5f));
-    const std::vector<Ray> random = random_rays(5'000);
-    rays.insert(rays.end(), random.begin(), random.end());
+    const std::vector<Ray> rays = camera_and_random_rays(scene, 100, 5'000);
     EdacrtParams after_first;
     after_first.second_child = SecondChild::after_first;
     const auto tracer = make_tracer(Method::edacrt);
